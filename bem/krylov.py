@@ -1,0 +1,97 @@
+"""Krylov solvers for the linear systems on the contact set (inner loop of the contact solver).
+
+Both take a matrix-free ``matvec``, a right-hand side ``b`` and stop when
+``||b - A x||_2 <= atol`` or after ``maxiter`` products; they return
+``(x, residual_norm, matvecs)``. They start from ``x = 0``: the contact solver passes
+corrections, so a warm start is already in its right-hand side.
+
+- :func:`cg` for the symmetric positive definite case (elastic or zero speed).
+- :func:`gmres` (restarted, Householder-free: classical Gram–Schmidt applied twice, which
+  is as stable as modified Gram–Schmidt and uses matrix–vector BLAS calls) for the
+  non-symmetric but positive-real steady-sliding operator: its symmetric part has the
+  symbol ``Re a_q > 0``, so the field of values excludes 0 and GMRES converges.
+"""
+import numpy as np
+
+
+def cg(matvec, b, *, atol, maxiter):
+    """Conjugate gradients for SPD ``matvec``; see module docstring."""
+    x = np.zeros_like(b)
+    r = b.copy()
+    rr = float(r @ r)
+    if np.sqrt(rr) <= atol:
+        return x, np.sqrt(rr), 0
+    d = r.copy()
+    k = 0
+    while k < maxiter:
+        ad = matvec(d)
+        k += 1
+        dad = float(d @ ad)
+        if dad <= 0:  # loss of positivity: stop with what we have
+            break
+        alpha = rr / dad
+        x += alpha * d
+        r -= alpha * ad
+        rr_new = float(r @ r)
+        if np.sqrt(rr_new) <= atol:
+            rr = rr_new
+            break
+        d *= rr_new / rr
+        d += r
+        rr = rr_new
+    return x, np.sqrt(rr), k
+
+
+def gmres(matvec, b, *, atol, maxiter, restart=40):
+    """Restarted GMRES(``restart``) from ``x = 0``; see module docstring."""
+    n = b.size
+    x = np.zeros_like(b)
+    r = b.copy()
+    beta = float(np.linalg.norm(r))
+    k = 0
+    m = max(1, min(restart, maxiter, n))
+    V = np.empty((m + 1, n))
+    while beta > atol and k < maxiter:
+        H = np.zeros((m + 1, m))
+        Hbar = np.zeros((m + 1, m))  # unrotated Hessenberg matrix, for the residual
+        V[0] = r / beta
+        cs, sn = np.zeros(m), np.zeros(m)
+        g = np.zeros(m + 1)
+        g[0] = beta
+        j_done = 0
+        for j in range(m):
+            w = matvec(V[j])
+            k += 1
+            for _ in range(2):  # CGS2
+                h = V[: j + 1] @ w
+                w -= h @ V[: j + 1]
+                H[: j + 1, j] += h
+            H[j + 1, j] = np.linalg.norm(w)
+            Hbar[: j + 2, j] = H[: j + 2, j]
+            if H[j + 1, j] > 0:
+                V[j + 1] = w / H[j + 1, j]
+            else:  # lucky breakdown: the solution lies in the current space
+                V[j + 1] = 0.0
+            for i in range(j):  # apply previous Givens rotations
+                t = cs[i] * H[i, j] + sn[i] * H[i + 1, j]
+                H[i + 1, j] = -sn[i] * H[i, j] + cs[i] * H[i + 1, j]
+                H[i, j] = t
+            den = np.hypot(H[j, j], H[j + 1, j])
+            cs[j], sn[j] = (1.0, 0.0) if den == 0 else (H[j, j] / den, H[j + 1, j] / den)
+            H[j, j] = den
+            H[j + 1, j] = 0.0
+            g[j + 1] = -sn[j] * g[j]
+            g[j] = cs[j] * g[j]
+            j_done = j + 1
+            if abs(g[j + 1]) <= atol or k >= maxiter or H[j, j] == 0:
+                break
+        y = np.linalg.solve(np.triu(H[:j_done, :j_done]), g[:j_done]) if j_done else np.zeros(0)
+        x += y @ V[:j_done]
+        # Arnoldi: b - A x_new = r - V_{j+1} Hbar y, without another product
+        coef = -(Hbar[: j_done + 1, :j_done] @ y)
+        coef[0] += beta
+        r = coef @ V[: j_done + 1]
+        beta = float(np.linalg.norm(r))
+        if j_done and H[j_done - 1, j_done - 1] == 0:
+            break
+    return x, beta, k

@@ -1,0 +1,312 @@
+"""Linear viscoelastic material: Prony (relaxation) and creep (retardation) series.
+
+Units are SI: moduli in Pa, compliances in 1/Pa, times in s, angular frequencies in rad/s.
+
+Conventions (SPEC §2.1), with ``s = i w``:
+
+- relaxation (generalised Maxwell):
+  ``E(t) = E0 + sum_k E_k exp(-t/tau_k)``,
+  ``E(w) = E0 + sum_k E_k i w tau_k / (1 + i w tau_k)``,
+  ``E_inf = E0 + sum_k E_k`` (``E0`` relaxed, ``E_inf`` glassy);
+- creep (retardation):
+  ``J(t) = 1/E0 - sum_k C_k exp(-t/lambda_k)``,
+  ``J(w) = 1/E_inf + sum_k C_k / (1 + i w lambda_k)``,
+  ``1/E_inf = 1/E0 - sum_k C_k``.
+
+The two are converted exactly (to round-off) by partial fractions: the retardation
+rates ``1/lambda_k`` are the roots of ``E(-sigma)``, which are real and interlace the
+relaxation rates ``1/tau_k`` (one root per interval), so each is found by a bracketed
+root search; the residues follow from the derivative of ``E``, a sum of positive terms,
+so no cancellation occurs. The converse uses the same construction on ``J``.
+
+The Poisson ratio ``nu`` is the same for every term, so the half-space responds
+through the plane-strain modulus ``E(w) / (1 - nu**2)``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq, nnls
+
+from .checks import check_array, check_positive, check_range
+from .errors import InputError
+
+__all__ = ["Material"]
+
+
+def _sorted_terms(amplitudes, times):
+    order = np.argsort(times)[::-1]  # longest time first
+    return amplitudes[order], times[order]
+
+
+def _interlaced_roots(func, poles, upper=None):
+    """Roots of ``func(sigma)`` between consecutive ``poles`` (ascending).
+
+    If ``upper`` is None the first root lies in ``(0, poles[0])``; otherwise the last lies in
+    ``(poles[-1], inf)``. ``func`` must change sign once in each interval.
+    """
+    poles = np.asarray(poles, dtype=float)
+    if upper is None:
+        brackets = [(0.0, poles[0])] + list(zip(poles[:-1], poles[1:]))
+    else:
+        brackets = list(zip(poles[:-1], poles[1:])) + [(poles[-1], np.inf)]
+    roots = []
+    for lo, hi in brackets:
+        if np.isinf(hi):
+            hi = 2.0 * lo
+            while func(hi) * func(lo * (1 + 1e-15) + 1e-300) > 0:
+                hi *= 2.0
+        # open interval: step off the poles by a relative round-off amount
+        a = lo * (1 + 1e-14) if lo > 0 else 0.0
+        b = hi * (1 - 1e-14)
+        roots.append(brentq(func, a, b, xtol=1e-300, rtol=8.9e-16, maxiter=500))
+    return np.array(roots)
+
+
+def _prony_to_creep(E0, moduli, taus):
+    """Relaxation series -> (C_k, lambda_k). Exact partial fractions of 1/E(s)."""
+    rates = np.sort(1.0 / taus)  # ascending relaxation rates
+
+    def e_neg(sig):  # E(s = -sig), a monotone decreasing function between poles
+        return E0 + np.sum(moduli * sig * taus / (sig * taus - 1.0))
+
+    roots = _interlaced_roots(e_neg, rates)  # retardation rates 1/lambda
+    lambdas = 1.0 / roots
+    # residue of 1/E(s) at s_k = -1/lambda_k is C_k / lambda_k = 1 / E'(s_k)
+    s = -roots[:, None]
+    dE = np.sum(moduli * taus / (1.0 + s * taus) ** 2, axis=1)
+    compliances = lambdas / dE
+    return compliances, lambdas
+
+
+def _creep_to_prony(E0, compliances, lambdas):
+    """Creep series -> (E_k, tau_k). Exact partial fractions of 1/J(s)."""
+    j_inf = 1.0 / E0 - np.sum(compliances)
+    rates = np.sort(1.0 / lambdas)
+
+    def j_neg(sig):  # J(s = -sig)
+        return j_inf + np.sum(compliances / (1.0 - sig * lambdas))
+
+    roots = _interlaced_roots(j_neg, rates, upper=True)  # relaxation rates 1/tau
+    taus = 1.0 / roots
+    s = -roots[:, None]
+    dJ = np.sum(compliances * lambdas / (1.0 + s * lambdas) ** 2, axis=1)  # = -J'(s)
+    moduli = taus / dJ
+    return moduli, taus
+
+
+@dataclass(frozen=True)
+class Material:
+    """Isotropic linear viscoelastic solid with a constant Poisson ratio.
+
+    Build it with one of the class methods; the attributes hold both series.
+
+    Attributes
+    ----------
+    E0 : float
+        Relaxed (long-time, low-frequency) Young's modulus, Pa.
+    E_inf : float
+        Glassy (instantaneous, high-frequency) Young's modulus, Pa.
+    moduli, relaxation_times : ndarray
+        Prony series ``E_k`` (Pa) and ``tau_k`` (s), longest time first.
+    compliances, creep_times : ndarray
+        Creep series ``C_k`` (1/Pa) and ``lambda_k`` (s), longest time first.
+    nu : float
+        Poisson ratio in [0, 0.5].
+    """
+
+    E0: float
+    moduli: np.ndarray
+    relaxation_times: np.ndarray
+    nu: float = 0.5
+    compliances: np.ndarray = field(init=False, repr=False)
+    creep_times: np.ndarray = field(init=False, repr=False)
+    E_inf: float = field(init=False)
+
+    def __post_init__(self):
+        E0 = check_positive("E0", self.E0)
+        nu = check_range("nu", self.nu, 0.0, 0.5)
+        Ek = check_array("moduli", self.moduli, ndim=1, min_size=0)
+        tk = check_array("times", self.relaxation_times, ndim=1, min_size=0)
+        if Ek.shape != tk.shape:
+            raise InputError(f"moduli and times must have the same length, got {Ek.size} and {tk.size}")
+        if np.any(Ek <= 0):
+            raise InputError(f"moduli must all be > 0 Pa, got min {Ek.min()!r}")
+        if np.any(tk <= 0):
+            raise InputError(f"times must all be > 0 s, got min {tk.min()!r}")
+        if np.unique(tk).size != tk.size:
+            raise InputError("times must be distinct (merge terms with equal times)")
+        Ek, tk = _sorted_terms(Ek, tk)
+        if Ek.size:
+            Ck, lk = _prony_to_creep(E0, Ek, tk)
+            Ck, lk = _sorted_terms(Ck, lk)
+        else:
+            Ck, lk = np.zeros(0), np.zeros(0)
+        for name, value in [("E0", E0), ("nu", nu), ("moduli", Ek), ("relaxation_times", tk),
+                            ("compliances", Ck), ("creep_times", lk), ("E_inf", float(E0 + Ek.sum()))]:
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+            object.__setattr__(self, name, value)
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def elastic(cls, E, nu=0.5):
+        """Linear elastic solid of Young's modulus ``E`` (Pa)."""
+        return cls(check_positive("E", E), np.zeros(0), np.zeros(0), nu)
+
+    @classmethod
+    def standard_linear_solid(cls, *, E0, E_inf, relaxation_time=None, creep_time=None, nu=0.5):
+        """One-term solid: relaxed ``E0``, glassy ``E_inf`` (Pa) and exactly one time (s).
+
+        ``creep_time`` (retardation time, the seed paper's ``tau``) and
+        ``relaxation_time`` are related by ``creep_time = relaxation_time * E_inf / E0``.
+        """
+        E0 = check_positive("E0", E0)
+        E_inf = check_positive("E_inf", E_inf)
+        if not E_inf > E0:
+            raise InputError(f"E_inf must be > E0 = {E0!r} Pa (glassy stiffer than relaxed), got {E_inf!r}")
+        if (relaxation_time is None) == (creep_time is None):
+            raise InputError("give exactly one of relaxation_time or creep_time (s)")
+        if relaxation_time is not None:
+            tau = check_positive("relaxation_time", relaxation_time)
+        else:
+            tau = check_positive("creep_time", creep_time) * E0 / E_inf
+        return cls(E0, np.array([E_inf - E0]), np.array([tau]), nu)
+
+    @classmethod
+    def from_prony(cls, *, E0, moduli, times, nu=0.5):
+        """Relaxation series ``E(t) = E0 + sum E_k exp(-t/tau_k)`` (Pa, s)."""
+        return cls(E0, check_array("moduli", moduli, ndim=1), check_array("times", times, ndim=1), nu)
+
+    @classmethod
+    def from_creep(cls, *, E0, compliances, times, nu=0.5):
+        """Creep series ``J(t) = 1/E0 - sum C_k exp(-t/lambda_k)`` (1/Pa, s), all ``C_k > 0``."""
+        E0 = check_positive("E0", E0)
+        Ck = check_array("compliances", compliances, ndim=1)
+        lk = check_array("times", times, ndim=1)
+        if Ck.shape != lk.shape:
+            raise InputError(f"compliances and times must have the same length, got {Ck.size} and {lk.size}")
+        if np.any(Ck <= 0):
+            raise InputError(f"compliances must all be > 0 1/Pa, got min {Ck.min()!r}")
+        if np.any(lk <= 0):
+            raise InputError(f"times must all be > 0 s, got min {lk.min()!r}")
+        if np.unique(lk).size != lk.size:
+            raise InputError("times must be distinct (merge terms with equal times)")
+        if not Ck.sum() < 1.0 / E0:
+            raise InputError(f"compliances must sum to < 1/E0 = {1 / E0!r} 1/Pa (so that E_inf is finite), "
+                             f"got {Ck.sum()!r}")
+        Ek, tk = _creep_to_prony(E0, Ck, lk)
+        return cls(E0, Ek, tk, nu)
+
+    @classmethod
+    def fit_prony(cls, frequencies, storage, loss, *, times=None, terms_per_decade=1.0,
+                  hz=False, nu=0.5):
+        """Fit a non-negative Prony series to DMA data (a master curve).
+
+        Parameters
+        ----------
+        frequencies : array_like
+            Angular frequencies (rad/s), or Hz with ``hz=True``.
+        storage, loss : array_like
+            ``E'(w)`` and ``E''(w)`` in Pa.
+        times : array_like, optional
+            Relaxation times (s) to fit with; by default log-spaced over
+            ``[1/w_max, 1/w_min]`` with ``terms_per_decade`` per decade.
+        nu : float
+            Poisson ratio.
+
+        Notes
+        -----
+        Non-negative least squares (Lawson–Hanson) on ``E'`` and ``E''`` each divided by
+        ``|E*|`` at its frequency, so every decade weighs the same. Terms fitted as zero
+        are dropped. Unknowns are ``E0 >= 0`` and ``E_k >= 0``; ``E0`` must come out > 0.
+        """
+        w = check_array("frequencies", frequencies, ndim=1, positive=True)
+        if hz:
+            w = 2 * np.pi * w
+        e1 = check_array("storage", storage, ndim=1, positive=True)
+        e2 = check_array("loss", loss, ndim=1)
+        if not (w.shape == e1.shape == e2.shape):
+            raise InputError(f"frequencies, storage and loss must have the same length, got "
+                             f"{w.size}, {e1.size}, {e2.size}")
+        if np.any(e2 < 0):
+            raise InputError("loss must be >= 0 Pa everywhere (a passive material dissipates)")
+        if times is None:
+            per = check_positive("terms_per_decade", terms_per_decade)
+            lo, hi = np.log10(1 / w.max()), np.log10(1 / w.min())
+            n = max(int(np.ceil((hi - lo) * per)) + 1, 1)
+            taus = np.logspace(lo, hi, n)
+        else:
+            taus = check_array("times", times, ndim=1, positive=True)
+        wt = w[:, None] * taus[None, :]
+        scale = np.hypot(e1, e2)[:, None]
+        a = np.vstack([np.hstack([np.ones((w.size, 1)), wt**2 / (1 + wt**2)]) / scale,
+                       np.hstack([np.zeros((w.size, 1)), wt / (1 + wt**2)]) / scale])
+        b = np.concatenate([e1, e2]) / np.concatenate([scale[:, 0], scale[:, 0]])
+        colnorm = np.linalg.norm(a, axis=0)
+        colnorm[colnorm == 0] = 1.0
+        x, _ = nnls(a / colnorm, b, maxiter=50 * a.shape[1])
+        x = x / colnorm
+        if not x[0] > 0:
+            raise InputError("fit_prony: the data imply a relaxed modulus E0 <= 0; extend the data to lower "
+                             "frequencies or pass times covering them")
+        keep = x[1:] > 1e-12 * x.sum()
+        return cls(x[0], x[1:][keep], taus[keep], nu)
+
+    # ------------------------------------------------------------------ responses
+    @property
+    def is_elastic(self):
+        """True when there are no viscous terms."""
+        return self.moduli.size == 0
+
+    @property
+    def plane_strain_factor(self):
+        """``1 - nu**2``: the half-space responds to ``E / (1 - nu**2)``."""
+        return 1.0 - self.nu**2
+
+    def complex_modulus(self, w):
+        """``E*(w) = E' + i E''`` (Pa) at angular frequency ``w`` (rad/s, any sign)."""
+        w = np.asarray(w, dtype=float)
+        iwt = 1j * w[..., None] * self.relaxation_times
+        return self.E0 + np.sum(self.moduli * iwt / (1.0 + iwt), axis=-1)
+
+    def complex_compliance(self, w):
+        """``J*(w) = 1 / E*(w)`` (1/Pa) from the creep series."""
+        w = np.asarray(w, dtype=float)
+        return 1.0 / self.E_inf + np.sum(
+            self.compliances / (1.0 + 1j * w[..., None] * self.creep_times), axis=-1)
+
+    def creep_compliance(self, t):
+        """``J(t)`` (1/Pa) for ``t >= 0`` (s): strain under a unit step stress."""
+        t = np.asarray(t, dtype=float)
+        return 1.0 / self.E0 - np.sum(self.compliances * np.exp(-t[..., None] / self.creep_times), axis=-1)
+
+    def relaxation_modulus(self, t):
+        """``E(t)`` (Pa) for ``t >= 0`` (s): stress under a unit step strain."""
+        t = np.asarray(t, dtype=float)
+        return self.E0 + np.sum(self.moduli * np.exp(-t[..., None] / self.relaxation_times), axis=-1)
+
+    def folded(self, w_min, w_max, *, tol=1e-6):
+        """Copy with the terms inactive over ``[w_min, w_max]`` (rad/s) folded in.
+
+        A relaxation term with ``w_max * tau_k < tol`` is fully relaxed there and dropped;
+        one with ``w_min * tau_k > 1/tol`` is glassy there and added to ``E0``. The complex
+        modulus changes by at most about ``tol * E_k`` per folded term inside the band.
+        """
+        w_min = check_positive("w_min", w_min, allow_zero=True)
+        w_max = check_positive("w_max", w_max)
+        relaxed = w_max * self.relaxation_times < tol
+        glassy = w_min * self.relaxation_times > 1.0 / tol
+        active = ~(relaxed | glassy)
+        return Material(self.E0 + self.moduli[glassy].sum(), self.moduli[active],
+                        self.relaxation_times[active], self.nu)
+
+    def __eq__(self, other):
+        if not isinstance(other, Material):
+            return NotImplemented
+        return (self.E0 == other.E0 and self.nu == other.nu
+                and np.array_equal(self.moduli, other.moduli)
+                and np.array_equal(self.relaxation_times, other.relaxation_times))
+
+    __hash__ = None

@@ -1,0 +1,113 @@
+"""Periodic viscoelastic half-space under steady sliding: the surface response operator.
+
+Conventions (SPEC §2.2; SI units). The rigid indenter moves with speed ``v`` (m/s) in
+``+x``; in its frame every field is stationary and material points travel in ``-x``.
+``p`` is the normal pressure (Pa, compressive positive) and ``u`` the normal surface
+displacement (m, positive into the solid). With the FFT convention of :mod:`bem.fft`,
+
+    u_q = 2 (1 - nu**2) / |q| * J(w = -q_x v) * p_q,        q != 0,
+
+with ``J(w) = 1/E_inf + sum_k C_k / (1 + i w lambda_k)`` the complex creep compliance.
+The same symbol serves 1-D profiles (plane strain, load per unit length). The ``q = 0``
+mode of ``u`` is not defined for a half-space: the operator returns zero-mean
+displacements and the rigid approach carries the mean (see :mod:`bem.contact`).
+
+Check of the sign: the symbol's imaginary part has the sign of ``q_x``, so the
+dissipation ``-∫ p du/dx dA = A sum_q q_x Im(a_q) |p_q|**2 >= 0`` for every ``p``.
+"""
+import numpy as np
+
+from . import fft
+
+__all__ = ["PeriodicHalfSpace"]
+
+
+class PeriodicHalfSpace:
+    """Steady-sliding response operator of a periodic cell, built once and reused.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        ``(n,)`` for a profile or ``(n, n)`` for a surface.
+    length : float
+        Side of the periodic cell, m.
+    material : bem.Material
+        The viscoelastic solid.
+    speed : float
+        Sliding speed, m/s (``0`` gives the relaxed elastic response with ``E0``).
+
+    Attributes
+    ----------
+    symbol : ndarray
+        ``a_q`` on the half spectrum (m/Pa); real for elastic solids or zero speed.
+    """
+
+    def __init__(self, shape, length, material, speed):
+        self.shape = tuple(shape)
+        self.length = float(length)
+        self.material = material
+        self.speed = float(speed)
+        q = fft.wavevectors(self.shape, self.length)
+        qx = q[0]
+        qnorm = np.sqrt(sum(c**2 for c in q))
+        with np.errstate(divide="ignore"):
+            green = np.where(qnorm > 0, 2.0 * material.plane_strain_factor / qnorm, 0.0)
+        if material.is_elastic or self.speed == 0.0:
+            modulus = material.E0
+            self.symbol = green / modulus
+            self.is_symmetric = True
+        else:
+            comp = material.complex_compliance(-qx * self.speed)
+            self.symbol = fft.hermitian_multiplier(green * comp, self.shape)
+            self.is_symmetric = bool(np.all(self.symbol.imag == 0))
+            if self.is_symmetric:
+                self.symbol = self.symbol.real
+        self._qx = np.broadcast_to(qx, self.symbol.shape)
+        self._weights = fft.full_spectrum_weights(self.shape)
+
+    @property
+    def size(self):
+        return int(np.prod(self.shape))
+
+    @property
+    def area(self):
+        """Cell area (m²) for surfaces, cell length (m) for profiles."""
+        return self.length ** len(self.shape)
+
+    def self_influence(self):
+        """Displacement (m) at a point per unit uniform-mean-free pressure there (m/Pa).
+
+        The diagonal of the real-space operator: the mean of the real symbol.
+        """
+        return float(np.sum(self._weights * np.real(self.symbol)) / self.size)
+
+    def displacement(self, pressure):
+        """Zero-mean surface displacement (m) under ``pressure`` (Pa), same shape."""
+        return fft.inverse(fft.forward(pressure) * self.symbol, self.shape)
+
+    def pressure_from_displacement(self, displacement):
+        """Zero-mean pressure (Pa) whose displacement is ``displacement`` up to its mean.
+
+        The exact inverse of :meth:`displacement` on zero-mean fields (full contact).
+        """
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inv = np.where(self.symbol != 0, 1.0 / np.where(self.symbol != 0, self.symbol, 1.0), 0.0)
+        return fft.inverse(fft.forward(displacement) * inv, self.shape)
+
+    def symmetric_part(self):
+        """Operator with the symbol's real part: the symmetric part of this operator."""
+        twin = object.__new__(PeriodicHalfSpace)
+        twin.__dict__.update(self.__dict__)
+        twin.symbol = np.real(self.symbol).copy()
+        twin.is_symmetric = True
+        return twin
+
+    def dissipation_integral(self, pressure_q):
+        """``-∫ p du/dx dA`` (N·m/m = N for surfaces, N/m·m for profiles; i.e. force × length
+        per unit length) from the half-spectrum coefficients of the pressure.
+
+        Equals the tangential (friction) force: dissipated power is this times ``v``.
+        Non-negative for any pressure, since ``q_x Im(a_q) >= 0``.
+        """
+        term = self._qx * np.imag(self.symbol) * np.abs(pressure_q) ** 2
+        return float(self.area * np.sum(self._weights * term))

@@ -1,0 +1,8 @@
+"""FEM reference for viscobem (scikit-fem): steady rolling and axisymmetric indentation.
+
+An independent check of the BEM: a different discretisation of the same physics. It
+shares only the material type (:class:`bem.Material`) and the error classes with ``bem``.
+"""
+from .rolling import RollingResult, domain_size, rolling_cylinder
+
+__all__ = ["rolling_cylinder", "RollingResult", "domain_size"]

@@ -1,0 +1,1 @@
+"""Validation harness: exact solutions, BEM/FEM comparisons, reports and VTK output."""
