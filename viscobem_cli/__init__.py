@@ -1,0 +1,1 @@
+"""The ``viscobem`` command line: scenes (TOML studies), runs, benchmarks."""

@@ -1,0 +1,90 @@
+"""``viscobem`` command line.
+
+    viscobem run [SCENE.toml] [--out DIR]     run a study (the seed paper's by default)
+    viscobem bench periodic [--quick] --out DIR   benchmark the periodic BEM
+    viscobem scene                            print the built-in default scene
+
+Bad input (scene or arguments) prints one line naming the problem, with no traceback,
+and exits with status 2; a sweep with points that did not converge exits with 1.
+"""
+import argparse
+import logging
+import sys
+
+from bem.errors import ConvergenceError, InputError
+
+
+def _cmd_run(args):
+    from . import scene as scenes
+    from .study import run_scene
+
+    scene = scenes.load(args.scene)
+    print(f"viscobem run: {scene.title}")
+    print(f"  surface {scene.surface.shape} on {scene.surface.length} m, load {scene.load} N, "
+          f"{scene.speeds.size} speeds; writing to {args.out}")
+    record = run_scene(scene, args.out, progress=not args.no_progress)
+    curve = record["friction_curve"]
+    print(f"  {'xi':>10} {'speed (m/s)':>12} {'friction':>10} {'contact':>9} {'iters':>6}")
+    for i, xi in enumerate(curve["xi"]):
+        if curve["success"][i]:
+            print(f"  {xi:10.3e} {curve['speed'][i]:12.4e} {curve['friction'][i]:10.5f} "
+                  f"{curve['contact_fraction'][i]:9.4f} {curve['iterations'][i]:6d}")
+        else:
+            print(f"  {xi:10.3e} {curve['speed'][i]:12.4e}  FAILED: {curve['message'][i]}")
+    print(f"  total {record['stages']['total']:.1f} s; files: {', '.join(record['files'])}")
+    return 0 if record["all_converged"] else 1
+
+
+def _cmd_scene(args):
+    from .scene import DEFAULT_SCENE
+
+    print(DEFAULT_SCENE.read_text(), end="")
+    return 0
+
+
+def _cmd_bench(args):
+    import importlib
+
+    module = importlib.import_module(f"benchmarks.{args.name}")
+    module.run(quick=args.quick, out_dir=args.out)
+    return 0
+
+
+def build_parser():
+    parser = argparse.ArgumentParser(prog="viscobem", description=__doc__.split("\n\n")[0])
+    parser.add_argument("-v", "--verbose", action="store_true", help="log solver progress")
+    sub = parser.add_subparsers(dest="command", required=True)
+    run = sub.add_parser("run", help="run a scene (default: the seed paper's study)")
+    run.add_argument("scene", nargs="?", default=None, help="scene TOML file")
+    run.add_argument("--out", default="viscobem-out", help="output folder (default: viscobem-out)")
+    run.add_argument("--no-progress", action="store_true", help="no progress bar")
+    run.set_defaults(func=_cmd_run)
+    scene = sub.add_parser("scene", help="print the built-in default scene (a template)")
+    scene.set_defaults(func=_cmd_scene)
+    bench = sub.add_parser("bench", help="run a benchmark")
+    bench.add_argument("name", choices=["periodic"], help="which benchmark")
+    bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
+    bench.add_argument("--out", default="bench-out", help="output folder")
+    bench.set_defaults(func=_cmd_bench)
+    return parser
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
+    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return args.func(args)
+    except InputError as err:
+        print(f"viscobem: error: {err}", file=sys.stderr)
+        return 2
+    except ConvergenceError as err:
+        print(f"viscobem: did not converge: {err}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("viscobem: interrupted; finished points are in results.json", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
