@@ -10,13 +10,17 @@ the rigid approach ``delta`` (m) with
 
 and either ``mean(p) = p_mean`` (load control) or ``delta`` given (displacement control).
 
-Algorithm: primal–dual active set (a semismooth Newton method; Hintermüller, Ito &
-Kunisch, SIAM J. Optim. 13 (2002) 865, doi:10.1137/S1052623401383558) with inexact
-inner solves: on the current contact set ``C`` the linear system ``A_CC p_C = h_C + delta``
-(with the load constraint ``sum p_C`` fixed, enforced by projecting out the mean on
-``C``) is solved by conjugate gradients when ``A`` is symmetric and by GMRES otherwise,
-loosely while the set still changes and tightly once it settles. The first iterate is
-the full-contact solution, exact in Fourier space.
+Algorithm: primal–dual active set, i.e. a semismooth Newton method on
+``min(p, c g) = 0`` with ``c`` the stiffness of one grid cell (Hintermüller, Ito &
+Kunisch, SIAM J. Optim. 13 (2002) 865, doi:10.1137/S1052623401383558), damped by a line
+search on ``||min(p, c g)||`` along the Newton step (pressure, displacement and gap are
+affine along it, so the search costs no operator product). Each Newton point solves, on
+the contact set ``C``, ``A_CC p_C = h_C + delta`` with the load constraint (``sum p_C``
+fixed, enforced by projecting out the mean on ``C``): conjugate gradients when ``A`` is
+symmetric, GMRES otherwise, loosely while the set still changes and tightly once it
+settles. The first iterate is built from the full-contact solution, exact in Fourier
+space. Undamped steps are taken whenever they reduce the merit, so easy problems see
+plain primal–dual active-set convergence.
 
 Convergence test, stated exactly: the solve succeeds when the complementarity residual
 
@@ -31,6 +35,7 @@ import logging
 from dataclasses import dataclass
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from . import krylov
 from .errors import ConvergenceError
@@ -63,8 +68,50 @@ def _full_contact_pressure(op, ht):
     return op.pressure_from_displacement(ht)
 
 
-def solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, maxiter=100,
-                  inner_maxiter=None, inner_eta=0.1, initial=None, raise_on_failure=True):
+def solve_contact(op, heights, **kwargs):
+    """Solve the contact problem for operator ``op``; see :func:`_solve_contact`."""
+    # SPEC §7: threaded BLAS on vectors of this size is slow, and 1000x slower when the other
+    # core is busy; the FFTs keep their own workers.
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _solve_contact(op, heights, **kwargs)
+
+
+def _restricted(apply, idx, shape, project):
+    """``z -> (apply(E z))[idx]`` with ``E`` the zero extension from ``idx``; with ``project``,
+    in and out are made zero-mean on ``idx`` (the load constraint)."""
+    z_full = np.zeros(shape)
+    z_flat = z_full.reshape(-1)  # a view: scatter/gather by index, not by mask
+
+    def f(z):
+        z_flat[idx] = z - z.mean() if project else z
+        out = np.take(apply(z_full).reshape(-1), idx)
+        z_flat[idx] = 0.0
+        return out - out.mean() if project else out
+
+    return f
+
+
+def _line_search(p, g, p_new, g_new, c):
+    """Step ``t`` in (0, 1] that (nearly) minimises the merit ``||min(p, c g)||**2`` along the
+    segment from ``(p, g)`` to ``(p_new, g_new)``; both are affine in ``t``, so no operator
+    product is needed."""
+    dp, dg = p_new - p, g_new - g
+
+    def merit(t):
+        f = np.minimum(p + t * dp, c * (g + t * dg)).reshape(-1)
+        return float(np.dot(f, f))
+
+    m0 = merit(0.0)
+    if merit(1.0) <= (1 - 1e-4) * m0:
+        return 1.0
+    ts = 0.5 ** np.arange(1, 13)
+    values = [merit(t) for t in ts]
+    k = int(np.argmin(values))
+    return float(ts[k]) if values[k] < m0 else float(ts[-1])
+
+
+def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, maxiter=100,
+                   inner_maxiter=None, initial=None, raise_on_failure=True):
     """Solve the contact problem for operator ``op`` (see module docstring).
 
     Parameters
@@ -81,7 +128,7 @@ def solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, 
     rtol : float
         Tolerance on the complementarity residual.
     maxiter : int
-        Maximum number of active-set (outer) iterations.
+        Maximum number of active-set (outer, Newton) iterations.
     inner_maxiter : int, optional
         Maximum operator products per inner solve (default ``20 sqrt(N) + 200``).
     initial : ndarray, optional
@@ -96,9 +143,11 @@ def solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, 
     else:
         p_ref = max(float(approach), np.ptp(ht) * 1e-3) / a0
     h_ref = float(np.ptp(ht)) or a0 * p_ref
+    c = 1.0 / a0  # active-set weight: the stiffness of one grid cell (Pa/m)
     inner_maxiter = inner_maxiter or int(20 * np.sqrt(ht.size) + 200)
     solve_inner = krylov.cg if op.is_symmetric else krylov.gmres
     final_atol = 0.1 * rtol * h_ref
+    matvecs = 0
 
     if initial is not None:
         p = np.maximum(np.asarray(initial, dtype=float), 0.0)
@@ -106,79 +155,78 @@ def solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, 
         p = np.maximum(_full_contact_pressure(op, ht) + p_ref, 0.0)
     else:
         p = np.where(ht + approach > 0, np.maximum(_full_contact_pressure(op, ht), 0.0), 0.0)
-    if load_control and not np.any(p > 0):
-        p = np.where(ht == 0, 1.0, 0.0)
+    if not np.any(p > 0):
+        p = np.where(ht == 0, p_ref, 0.0)
     contact = p > 0
 
-    matvecs = 0
-    residual = np.inf
-    delta = float(approach) if not load_control else 0.0
     tighten = 1.0
-    for outer in range(1, maxiter + 1):
-        if load_control:
-            p *= p_ref * p.size / p.sum()
-        u = op.displacement(p)
-        matvecs += 1
-        if load_control:
-            delta = float(np.mean(u[contact] - ht[contact]))
-        g = u - ht - delta
-        residual = complementarity_residual(p, g, p_ref, h_ref)
-        log.debug("active set %d: %d products, residual %.3e, contact %.4f",
-                  outer, matvecs, residual, contact.mean())
-        if residual <= rtol:
-            break
-        new = (contact & (p > 0)) | (~contact & (g < 0))
-        if not new.any():
-            new = g == g.min()
-        changed = int(np.count_nonzero(new != contact))
-        if changed:
-            p[~new] = 0.0
-            contact = new
+
+    def newton_point(contact, p, u, eta):
+        """Pressure and approach solving the linear problem with ``contact`` as the contact set,
+        starting from ``p`` (whose displacement is ``u``, if known)."""
+        nonlocal matvecs
+        if u is None or np.any(p[~contact]):
+            p = np.where(contact, p, 0.0)
             if load_control:
                 p *= p_ref * p.size / p.sum() if p.sum() > 0 else 0.0
                 if not p.any():
-                    p[contact] = p_ref * p.size / contact.sum()
+                    p[contact] = p_ref * p.size / np.count_nonzero(contact)
             u = op.displacement(p)
             matvecs += 1
-        b = ht[contact] + delta - u[contact]
+        else:
+            p = p.copy()
+        idx = np.flatnonzero(contact)
+        d = float(approach) if not load_control else float(np.mean(u.reshape(-1)[idx] - ht.reshape(-1)[idx]))
+        b = ht.reshape(-1)[idx] + d - u.reshape(-1)[idx]
         if load_control:
             b -= b.mean()
-        idx = np.flatnonzero(contact)
-        z_full = np.zeros(shape)
-
-        def matvec(z):
-            zf = z - z.mean() if load_control else z
-            z_full.flat[idx] = zf
-            out = op.displacement(z_full)[contact]
-            z_full.flat[idx] = 0.0
-            return out - out.mean() if load_control else out
-
-        bnorm = float(np.linalg.norm(b))
-        # loose while the set changes (Eisenstat–Walker-like), to the final accuracy once settled
-        if changed:
-            tighten = 1.0
-            atol = max(final_atol * np.sqrt(idx.size), inner_eta * bnorm)
-        else:  # settled set but not yet converged: the inner accuracy was not enough
-            tighten *= 0.1
-            atol = final_atol * np.sqrt(idx.size) * tighten
-        z, _, k = solve_inner(matvec, b, atol=atol, maxiter=inner_maxiter)
+        atol = max(final_atol * max(np.sqrt(idx.size) * tighten, 1.0), eta * float(np.linalg.norm(b)))
+        z, _, k = solve_inner(_restricted(op.displacement, idx, shape, load_control), b, atol=atol,
+                              maxiter=inner_maxiter)
         matvecs += k
         if load_control:
             z -= z.mean()
-        p.flat[idx] += z
-    else:
-        outer = maxiter
+        p.reshape(-1)[idx] += z
+        u = op.displacement(p)
+        matvecs += 1
+        if load_control:
+            d = float(np.mean(u.reshape(-1)[idx] - ht.reshape(-1)[idx]))
+        return p, u, d
+
+    p, u, delta = newton_point(contact, p, None, 0.1)
+    g = u - ht - delta
+    residual = complementarity_residual(p, g, p_ref, h_ref)
+    outer = 1
+    while residual > rtol and outer < maxiter:
+        outer += 1
+        new = p - c * g > 0
+        if not new.any():
+            new = g == g.min()
+        changed = np.count_nonzero(new != contact)
+        # inexact Newton: loose inner solves while the set changes, tight once it has settled
+        p_new, u_new, d_new = newton_point(new, p, u, 0.1 if changed else 0.0)
+        g_new = u_new - ht - d_new
+        t = _line_search(p, g, p_new, g_new, c)
+        if t == 1.0:
+            p, u, g, delta = p_new, u_new, g_new, d_new
+        else:  # damped step: everything is affine along the segment
+            p, u, g = p + t * (p_new - p), u + t * (u_new - u), g + t * (g_new - g)
+            delta += t * (d_new - delta)
+        contact = new
+        previous, residual = residual, complementarity_residual(p, g, p_ref, h_ref)
+        if not changed and residual > 0.5 * previous:  # settled but stalled: inner accuracy too low
+            tighten *= 0.1
+        log.debug("active set %d: %d changes, step %.3g, residual %.3e, contact %.4f, %d products",
+                  outer, changed, t, residual, np.mean(p > 0), matvecs)
 
     p = np.maximum(p, 0.0)
     if load_control and p.sum() > 0:
         p *= p_ref * p.size / p.sum()
     success = residual <= rtol
-    if success:
-        message = f"converged: complementarity residual {residual:.2e} <= rtol {rtol:.1e} " \
-                  f"after {outer} active-set iterations ({matvecs} operator products)"
-    else:
-        message = f"not converged: complementarity residual {residual:.2e} > rtol {rtol:.1e} " \
-                  f"after {outer} active-set iterations ({matvecs} operator products)"
+    state = "converged" if success else "not converged"
+    rel = "<=" if success else ">"
+    message = (f"{state}: complementarity residual {residual:.2e} {rel} rtol {rtol:.1e} after {outer} "
+               f"active-set iterations ({matvecs} operator products)")
     sol = ContactSolution(p, u, g, delta, outer, matvecs, residual, success, message)
     if not success and raise_on_failure:
         raise ConvergenceError(message, sol)

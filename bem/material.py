@@ -200,7 +200,7 @@ class Material:
         return cls(E0, Ek, tk, nu)
 
     @classmethod
-    def fit_prony(cls, frequencies, storage, loss, *, times=None, terms_per_decade=1.0,
+    def fit_prony(cls, frequencies, storage, loss, *, times=None, terms_per_decade=2.0,
                   hz=False, nu=0.5):
         """Fit a non-negative Prony series to DMA data (a master curve).
 
@@ -296,6 +296,8 @@ class Material:
         """
         w_min = check_positive("w_min", w_min, allow_zero=True)
         w_max = check_positive("w_max", w_max)
+        if w_min > w_max:
+            raise InputError(f"w_min must be <= w_max = {w_max!r} rad/s, got {w_min!r}")
         relaxed = w_max * self.relaxation_times < tol
         glassy = w_min * self.relaxation_times > 1.0 / tol
         active = ~(relaxed | glassy)

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import fft
-from .checks import check_positive
+from .checks import check_array, check_int, check_positive
 from .contact import solve_contact
 from .errors import ConvergenceError, InputError
 from .material import Material
@@ -168,8 +168,16 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
                          "(isolated contacts are a separate solver)")
     if method not in ("auto", "active-set"):
         raise InputError(f"method must be one of 'auto', 'active-set', got {method!r}")
-    if initial is not None and np.shape(initial) != surface.shape:
-        raise InputError(f"initial must have the heights' shape {surface.shape}, got {np.shape(initial)}")
+    maxiter = check_int("maxiter", maxiter, 1)
+    if initial is not None:
+        initial = check_array("initial", initial)
+        if initial.shape != surface.shape:
+            raise InputError(f"initial must have the heights' shape {surface.shape}, got {initial.shape}")
+    if approach is not None:
+        limit = float(surface.heights.max() - surface.heights.mean())
+        if not approach < limit:
+            raise InputError(f"approach must be in (0, {limit!r}) m: at max(h) - mean(h) the cell is in full "
+                             f"contact and the load is unbounded (zero-mean displacement), got {approach!r}")
     t0 = time.perf_counter()
     op = operator_for(surface, material, speed)
     area = op.area
@@ -244,7 +252,10 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=100, w
     -------
     FrictionCurve
     """
-    speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+    try:
+        speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError(f"speeds must be a list of numbers (m/s), got {speeds!r}") from None
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
         raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {speeds!r}")
     surface, _, load, _, rtol = _check_inputs(surface, material, 0.0, load, None, rtol)

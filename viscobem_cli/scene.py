@@ -6,7 +6,7 @@ Schema (SI units; unknown keys are an error that lists the valid ones)::
     [material]   nu = 0.5 and one of:  E  |  E0, E_inf, creep_time | relaxation_time
                  |  E0, moduli, times (Prony)  |  E0, compliances, times (creep)
                  |  dma = "file.csv" (columns: frequency, storage E' (Pa), loss E'' (Pa);
-                    dma_frequency_unit = "rad/s" | "Hz"; dma_terms_per_decade = 1.0)
+                    dma_frequency_unit = "rad/s" | "Hz"; dma_terms_per_decade = 2.0)
     [surface]    kind = "self_affine" | "sinusoid" | "file", length (m), n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
                               anisotropy, dim (1 or 2)
@@ -106,7 +106,7 @@ def _material(t, base):
     if unit not in ("rad/s", "Hz"):
         raise InputError(f"[material] dma_frequency_unit must be 'rad/s' or 'Hz', got {unit!r}")
     return Material.fit_prony(data[:, 0], data[:, 1], data[:, 2], hz=unit == "Hz",
-                              terms_per_decade=t.get("dma_terms_per_decade", 1.0), nu=nu)
+                              terms_per_decade=t.get("dma_terms_per_decade", 2.0), nu=nu)
 
 
 def _surface(t, base):
