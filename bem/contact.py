@@ -111,7 +111,7 @@ def _line_search(p, g, p_new, g_new, c):
 
 
 def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, maxiter=100,
-                   inner_maxiter=None, initial=None, raise_on_failure=True):
+                   inner_maxiter=None, inner_eta=0.1, initial=None, raise_on_failure=True):
     """Solve the contact problem for operator ``op`` (see module docstring).
 
     Parameters
@@ -193,7 +193,8 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
             d = float(np.mean(u.reshape(-1)[idx] - ht.reshape(-1)[idx]))
         return p, u, d
 
-    p, u, delta = newton_point(contact, p, None, 0.1)
+    eta = inner_eta  # inner forcing term: tightened whenever the step had to be damped
+    p, u, delta = newton_point(contact, p, None, eta)
     g = u - ht - delta
     residual = complementarity_residual(p, g, p_ref, h_ref)
     outer = 1
@@ -204,9 +205,11 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
             new = g == g.min()
         changed = np.count_nonzero(new != contact)
         # inexact Newton: loose inner solves while the set changes, tight once it has settled
-        p_new, u_new, d_new = newton_point(new, p, u, 0.1 if changed else 0.0)
+        p_new, u_new, d_new = newton_point(new, p, u, eta if changed else 0.0)
         g_new = u_new - ht - d_new
         t = _line_search(p, g, p_new, g_new, c)
+        if t < 1.0:
+            eta = max(0.1 * eta, 1e-4)
         if t == 1.0:
             p, u, g, delta = p_new, u_new, g_new, d_new
         else:  # damped step: everything is affine along the segment

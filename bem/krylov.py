@@ -42,9 +42,15 @@ def cg(matvec, b, *, atol, maxiter):
     return x, np.sqrt(rr), k
 
 
-def gmres(matvec, b, *, atol, maxiter, restart=40):
-    """Restarted GMRES(``restart``) from ``x = 0``; see module docstring."""
+def gmres(matvec, b, *, atol, maxiter, restart=None):
+    """Restarted GMRES(``restart``) from ``x = 0``; see module docstring.
+
+    The default restart length keeps the Krylov basis within about 256 MB (at most 200
+    vectors): long restarts matter for the ill-conditioned high-contrast operators.
+    """
     n = b.size
+    if restart is None:
+        restart = int(min(200, max(40, 2**25 // max(n, 1))))
     x = np.zeros_like(b)
     r = b.copy()
     beta = float(np.linalg.norm(r))

@@ -1,0 +1,97 @@
+"""Shared fixtures of the core-solver tests: reference materials and a dense LCP solver.
+
+Materials
+---------
+- ``seed``: the seed paper's standard linear solid, ``E_inf = 1e7 Pa``, ``E_inf/E0 = 3``,
+  creep (retardation) time 0.01 s.
+- ``prony30``: a rubber-like series of 30 relaxation terms with times log-spaced over
+  12 decades (1e-6 to 1e6 s) and ``E_inf/E0 = 1e4`` (``E0 = 1e6 Pa``).
+"""
+import contextlib
+
+import numpy as np
+import pytest
+
+try:
+    from threadpoolctl import threadpool_limits
+except ImportError:  # only a speed-up: single-threaded BLAS for many small dense solves
+    def threadpool_limits(**_):
+        return contextlib.nullcontext()
+
+from bem import Material
+
+
+def make_seed():
+    return Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)
+
+
+def make_prony30(ratio=1e4, terms=30):
+    times = np.logspace(-6, 6, terms)
+    moduli = np.full(terms, 1e6 * (ratio - 1.0) / terms)
+    return Material.from_prony(E0=1e6, moduli=moduli, times=times)
+
+
+@pytest.fixture(scope="session")
+def seed():
+    return make_seed()
+
+
+@pytest.fixture(scope="session")
+def prony30():
+    return make_prony30()
+
+
+def dense_operator(op):
+    """Dense matrix of ``op.displacement`` (m/Pa), column ``j`` = response to a unit ``p_j``."""
+    n = op.size
+    eye = np.zeros(op.shape)
+    cols = np.empty((n, n))
+    for j in range(n):
+        eye.flat[j] = 1.0
+        cols[:, j] = op.displacement(eye).ravel()
+        eye.flat[j] = 0.0
+    return cols
+
+
+def murty_lcp(M, q, maxpivots=100000):
+    """Solve ``w = M z + q >= 0, z >= 0, w.z = 0`` by Murty's least-index principal pivoting.
+
+    Obviously correct for a P-matrix ``M``: the basis is a set ``C`` of indices where ``z``
+    is basic; solve ``M_CC z_C = -q_C`` directly, then flip the *least* index whose basic
+    variable is negative. Murty (1974, doi:10.1007/BF01585524) proved that this terminates
+    from any complementary basis when ``M`` is a P-matrix, at the unique solution.
+    Returns ``(z, pivots)``.
+    """
+    n = q.size
+    C = -q > 0  # start from the bodies' overlap: any start works, this one is short
+    for pivots in range(maxpivots):
+        z = np.zeros(n)
+        idx = np.flatnonzero(C)
+        if idx.size:
+            z[idx] = np.linalg.solve(M[np.ix_(idx, idx)], -q[idx])
+        w = M @ z + q
+        w[idx] = 0.0
+        bad = np.flatnonzero(np.where(C, z < 0, w < 0))
+        if bad.size == 0:
+            return z, pivots
+        C[bad[0]] = not C[bad[0]]
+    raise RuntimeError("Murty's pivoting did not terminate")
+
+
+def dense_contact(op, heights, shifted_approach):
+    """Dense reference of the contact problem at one rigid position.
+
+    The periodic operator has no ``q = 0`` response (``A 1 = 0``), so ``A`` itself is singular;
+    ``M = A + c 11^T / N`` (``c`` = the self-influence) is a P-matrix (its symmetric part is
+    positive definite) and ``M p = A p + c mean(p)``. Solving the LCP with gap
+    ``M p - (h - max h) - d`` therefore solves the original problem with the approach
+    ``delta = d - c mean(p)`` (the approach unknown carries the mean). Returns
+    ``(pressure, delta, pivots)``.
+    """
+    A = dense_operator(op)
+    c = op.self_influence()
+    M = A + c / A.shape[0]
+    ht = (heights - heights.max()).ravel()
+    with threadpool_limits(limits=1, user_api="blas"):  # small dense solves: threads only hurt
+        z, pivots = murty_lcp(M, -(ht + shifted_approach))
+    return z.reshape(op.shape), shifted_approach - c * z.mean(), pivots
