@@ -91,6 +91,13 @@ def _restricted(apply, idx, shape, project):
     return f
 
 
+def _max_phase(op):
+    """Largest phase ``|arg a_q|`` of the operator's symbol (0 when symmetric)."""
+    if op.is_symmetric:
+        return 0.0
+    return float(np.max(np.abs(np.angle(op.symbol))))
+
+
 def _line_search(p, g, p_new, g_new, c):
     """Step ``t`` in (0, 1] that (nearly) minimises the merit ``||min(p, c g)||**2`` along the
     segment from ``(p, g)`` to ``(p_new, g_new)``; both are affine in ``t``, so no operator
@@ -149,6 +156,12 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
     final_atol = 0.1 * rtol * h_ref
     matvecs = 0
 
+    if initial is None and _max_phase(op) > np.pi / 4:
+        # strongly non-symmetric (high E_inf/E0 near the loss peak): start from the contact of
+        # the symmetric part (symbol Re a_q), a robust CG solve that puts the set near its place
+        sym = _solve_contact(op.symmetric_part(), heights, mean_pressure=mean_pressure, approach=approach,
+                             rtol=max(rtol, 1e-3), maxiter=maxiter, raise_on_failure=False)
+        initial, matvecs = sym.pressure, sym.matvecs
     if initial is not None:
         p = np.maximum(np.asarray(initial, dtype=float), 0.0)
     elif load_control:
