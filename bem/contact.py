@@ -117,7 +117,7 @@ def _line_search(p, g, p_new, g_new, c):
     return float(ts[k]) if values[k] < m0 else float(ts[-1])
 
 
-def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, maxiter=100,
+def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, maxiter=200,
                    inner_maxiter=None, inner_eta=0.1, initial=None, raise_on_failure=True):
     """Solve the contact problem for operator ``op`` (see module docstring).
 
