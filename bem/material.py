@@ -40,6 +40,21 @@ def _sorted_terms(amplitudes, times):
     return amplitudes[order], times[order]
 
 
+def _check_series(name, amplitudes, unit, times):
+    """Validate a series' amplitudes (> 0, in ``unit``) and times (> 0 s, distinct)."""
+    a = check_array(name, amplitudes, ndim=1, min_size=0)
+    t = check_array("times", times, ndim=1, min_size=0)
+    if a.shape != t.shape:
+        raise InputError(f"{name} and times must have the same length, got {a.size} and {t.size}")
+    if np.any(a <= 0):
+        raise InputError(f"{name} must all be > 0 {unit}, got min {a.min()!r}")
+    if np.any(t <= 0):
+        raise InputError(f"times must all be > 0 s, got min {t.min()!r}")
+    if np.unique(t).size != t.size:
+        raise InputError("times must be distinct (merge terms with equal times)")
+    return a, t
+
+
 def _interlaced_roots(func, poles, upper=None):
     """Roots of ``func(sigma)`` between consecutive ``poles`` (ascending).
 
@@ -127,17 +142,7 @@ class Material:
     def __post_init__(self):
         E0 = check_positive("E0", self.E0)
         nu = check_range("nu", self.nu, 0.0, 0.5)
-        Ek = check_array("moduli", self.moduli, ndim=1, min_size=0)
-        tk = check_array("times", self.relaxation_times, ndim=1, min_size=0)
-        if Ek.shape != tk.shape:
-            raise InputError(f"moduli and times must have the same length, got {Ek.size} and {tk.size}")
-        if np.any(Ek <= 0):
-            raise InputError(f"moduli must all be > 0 Pa, got min {Ek.min()!r}")
-        if np.any(tk <= 0):
-            raise InputError(f"times must all be > 0 s, got min {tk.min()!r}")
-        if np.unique(tk).size != tk.size:
-            raise InputError("times must be distinct (merge terms with equal times)")
-        Ek, tk = _sorted_terms(Ek, tk)
+        Ek, tk = _sorted_terms(*_check_series("moduli", self.moduli, "Pa", self.relaxation_times))
         if Ek.size:
             Ck, lk = _prony_to_creep(E0, Ek, tk)
             Ck, lk = _sorted_terms(Ck, lk)
@@ -183,16 +188,9 @@ class Material:
     def from_creep(cls, *, E0, compliances, times, nu=0.5):
         """Creep series ``J(t) = 1/E0 - sum C_k exp(-t/lambda_k)`` (1/Pa, s), all ``C_k > 0``."""
         E0 = check_positive("E0", E0)
-        Ck = check_array("compliances", compliances, ndim=1)
-        lk = check_array("times", times, ndim=1)
-        if Ck.shape != lk.shape:
-            raise InputError(f"compliances and times must have the same length, got {Ck.size} and {lk.size}")
-        if np.any(Ck <= 0):
-            raise InputError(f"compliances must all be > 0 1/Pa, got min {Ck.min()!r}")
-        if np.any(lk <= 0):
-            raise InputError(f"times must all be > 0 s, got min {lk.min()!r}")
-        if np.unique(lk).size != lk.size:
-            raise InputError("times must be distinct (merge terms with equal times)")
+        Ck, lk = _check_series("compliances", compliances, "1/Pa", times)
+        if not Ck.size:
+            raise InputError("compliances must have at least 1 entry (use Material.elastic for none)")
         if not Ck.sum() < 1.0 / E0:
             raise InputError(f"compliances must sum to < 1/E0 = {1 / E0!r} 1/Pa (so that E_inf is finite), "
                              f"got {Ck.sum()!r}")

@@ -62,7 +62,7 @@ def build_parser():
     scene = sub.add_parser("scene", help="print the built-in default scene (a template)")
     scene.set_defaults(func=_cmd_scene)
     bench = sub.add_parser("bench", help="run a benchmark")
-    bench.add_argument("name", choices=["periodic"], help="which benchmark")
+    bench.add_argument("name", choices=["periodic", "fem"], help="which benchmark")
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)
