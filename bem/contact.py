@@ -102,10 +102,13 @@ def _line_search(p, g, p_new, g_new, c):
     """Step ``t`` in (0, 1] that (nearly) minimises the merit ``||min(p, c g)||**2`` along the
     segment from ``(p, g)`` to ``(p_new, g_new)``; both are affine in ``t``, so no operator
     product is needed."""
-    dp, dg = p_new - p, g_new - g
+    # only points with pressure or negative gap at either end can contribute
+    live = ((p != 0) | (p_new != 0) | (g < 0) | (g_new < 0)).reshape(-1)
+    p0, g0 = p.reshape(-1)[live], g.reshape(-1)[live]
+    dp, dg = p_new.reshape(-1)[live] - p0, g_new.reshape(-1)[live] - g0
 
     def merit(t):
-        f = np.minimum(p + t * dp, c * (g + t * dg)).reshape(-1)
+        f = np.minimum(p0 + t * dp, c * (g0 + t * dg))
         return float(np.dot(f, f))
 
     m0 = merit(0.0)
