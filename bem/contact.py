@@ -32,7 +32,7 @@ height (or the displacement ``A p_ref`` at one point for a flat surface). ``r = 
 round-off. Otherwise :class:`bem.errors.ConvergenceError` is raised.
 """
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -69,11 +69,33 @@ def _full_contact_pressure(op, ht):
 
 
 def solve_contact(op, heights, **kwargs):
-    """Solve the contact problem for operator ``op``; see :func:`_solve_contact`."""
+    """Solve the contact problem for operator ``op``; see :func:`_solve_contact`.
+
+    Two attempts share ``maxiter`` (default 400): a fast one whose inner solves loosen again
+    after full Newton steps, then, if it fails, one whose inner tolerances only tighten.
+    """
     # SPEC §7: threaded BLAS on vectors of this size is slow, and 1000x slower when the other
     # core is busy; the FFTs keep their own workers.
     with threadpool_limits(limits=1, user_api="blas"):
-        return _solve_contact(op, heights, **kwargs)
+        raise_on_failure = kwargs.pop("raise_on_failure", True)
+        maxiter = kwargs.pop("maxiter", 400)
+        first = _solve_contact(op, heights, raise_on_failure=False, maxiter=(maxiter + 1) // 2, **kwargs)
+        if first.success or maxiter < 2:
+            if not first.success and raise_on_failure:
+                raise ConvergenceError(first.message, first)
+            return first
+        # the fast strategy (inner accuracy relaxed again after full steps) failed: redo with
+        # inner solves that only ever tighten, which is slower but converges more reliably
+        log.info("retrying with monotone inner tolerances: %s", first.message)
+        second = _solve_contact(op, heights, raise_on_failure=False, relax_inner=False,
+                                maxiter=maxiter - first.iterations, **kwargs)
+        sol = replace(second, matvecs=first.matvecs + second.matvecs,
+                      iterations=first.iterations + second.iterations,
+                      message=second.message.replace("active-set iterations", "active-set iterations "
+                                                     f"(after a first attempt of {first.iterations})"))
+        if not sol.success and raise_on_failure:
+            raise ConvergenceError(sol.message, sol)
+        return sol
 
 
 def _restricted(apply, idx, shape, project):
@@ -121,7 +143,8 @@ def _line_search(p, g, p_new, g_new, c):
 
 
 def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, maxiter=200,
-                   inner_maxiter=None, inner_eta=0.1, initial=None, raise_on_failure=True):
+                   inner_maxiter=None, inner_eta=0.1, initial=None, raise_on_failure=True,
+                   relax_inner=True):
     """Solve the contact problem for operator ``op`` (see module docstring).
 
     Parameters
@@ -214,6 +237,11 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
     g = u - ht - delta
     residual = complementarity_residual(p, g, p_ref, h_ref)
     outer = 1
+    damped, ascents = not op.is_symmetric, 0
+
+    def residual_of(p, g):
+        return complementarity_residual(p, g, p_ref, h_ref)
+
     while residual > rtol and outer < maxiter:
         outer += 1
         new = p - c * g > 0
@@ -223,9 +251,16 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
         # inexact Newton: loose inner solves while the set changes, tight once it has settled
         p_new, u_new, d_new = newton_point(new, p, u, eta if changed else 0.0)
         g_new = u_new - ht - d_new
-        t = _line_search(p, g, p_new, g_new, c)
+        # Symmetric problems take plain (undamped) active-set steps unless they stop making
+        # progress; non-symmetric ones, and unchanged sets (a more accurate solve), are damped.
+        t = _line_search(p, g, p_new, g_new, c) if changed and damped else 1.0
+        ascents = ascents + 1 if residual_of(p_new, g_new) > residual else 0
+        damped = damped or ascents >= 3
+        # damped step: the inner solves were too loose for this stage; full step: loosen again
         if t < 1.0:
             eta = max(0.1 * eta, 1e-4)
+        elif relax_inner:
+            eta = min(inner_eta, 3.0 * eta)
         if t == 1.0:
             p, u, g, delta = p_new, u_new, g_new, d_new
         else:  # damped step: everything is affine along the segment

@@ -128,7 +128,7 @@ def _check_inputs(surface, material, speed, load, approach, rtol):
 
 
 def solve(surface, material, *, speed, load=None, approach=None, periodic=True, method="auto",
-          rtol=1e-8, maxiter=200, initial=None, raise_on_failure=True):
+          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True):
     """Steady sliding of a rigid surface over a viscoelastic half-space (periodic cell).
 
     Parameters
@@ -231,7 +231,7 @@ class FrictionCurve:
         return bool(np.all(self.success))
 
 
-def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=200, warm_start=True,
+def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
                    progress=False, callback=None):
     """Solve at each speed; warm-start each from its neighbour (in increasing speed).
 

@@ -179,7 +179,7 @@ def parse(text, *, base=Path("."), source="<string>"):
             raise InputError(f"[outputs] {key} = true is not available in this version of viscobem")
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
                  load=float(raw["loading"]["load"]), speeds=speeds, xi=xi, xi_time=tau,
-                 rtol=float(solver.get("rtol", 1e-8)), maxiter=int(solver.get("maxiter", 200)),
+                 rtol=float(solver.get("rtol", 1e-8)), maxiter=int(solver.get("maxiter", 400)),
                  warm_start=bool(solver.get("warm_start", True)), outputs=outputs, source=source, raw=raw)
 
 

@@ -1,0 +1,202 @@
+"""Axisymmetric indentation of a viscoelastic half-space by a rigid sphere (step load).
+
+The load ``P`` is applied at ``t = 0`` and held. At ``t = 0+`` the solid responds with its
+glassy modulus ``E_inf``; as ``t -> inf`` with the relaxed ``E0``. While the contact
+grows, Lee & Radok's solution holds (E.H. Lee, J.R.M. Radok, J. Appl. Mech. 27 (1960)
+438-444, doi:10.1115/1.3644020)::
+
+    a(t)^3 = (3 R / 4) P (1 - nu^2) J(t).
+
+Sphere heights ``h(r) = -r^2 / (2R)`` (positive toward the solid, SPEC §2.3); approach
+``delta`` (m) positive into the solid; pressure positive in compression.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from bem.checks import check_array, check_int, check_positive
+from bem.errors import ConvergenceError, InputError
+from bem.material import Material
+
+from .axisymmetric import AxisymmetricStepper, fixed_dofs_axisymmetric
+from .contact import solve_load_control
+from .kinematics import quadrature_operators
+from .mesh import half_space_mesh
+from .surface import contact_edges, top_surface
+
+__all__ = ["IndentationResult", "indentation", "time_grid"]
+
+
+@dataclass(frozen=True)
+class IndentationResult:
+    """Result of :func:`indentation` at the requested ``times`` (SI units).
+
+    Attributes
+    ----------
+    times : ndarray
+        Requested times (s).
+    contact_radius : ndarray
+        Contact radius ``a(t)`` (m), from the nodal pressures (``p^2`` extrapolated).
+    approach : ndarray
+        Rigid approach ``delta(t)`` (m).
+    peak_pressure : ndarray
+        Largest nodal pressure (Pa).
+    r, pressure : ndarray
+        Surface node radii (m) in the candidate band and pressure (Pa) at the last time.
+    element_size, domain_size : float
+        Core element size and block radius = depth (m).
+    n_elements, n_unknowns, n_steps : int
+    iterations : ndarray of int
+        Active-set iterations per requested time.
+    timings : dict
+        Wall time (s) of the whole run under ``total``.
+    """
+
+    times: np.ndarray
+    contact_radius: np.ndarray
+    approach: np.ndarray
+    peak_pressure: np.ndarray
+    r: np.ndarray
+    pressure: np.ndarray
+    element_size: float
+    domain_size: float
+    n_elements: int
+    n_unknowns: int
+    n_steps: int
+    iterations: np.ndarray
+    success: bool = True
+    message: str = "converged"
+    timings: dict = field(default_factory=dict)
+
+
+def time_grid(times, creep_times, steps_per_decade):
+    """Internal step times: the requested ``times`` plus log-spaced points (s).
+
+    Steps grow geometrically from ``1e-3 min(lambda_k)`` so that every creep time is
+    resolved by ``steps_per_decade`` steps per decade (the exponential update is second
+    order in the step, and exact for piecewise-linear strain in time).
+    """
+    times = np.asarray(times, dtype=float)
+    pos = times[times > 0]
+    if pos.size == 0 or creep_times.size == 0:
+        return np.unique(np.concatenate([[0.0], times]))
+    t0 = 1e-3 * float(np.min(creep_times))
+    t1 = float(pos.max())
+    extra = np.geomspace(t0, t1, max(2, int(np.ceil(np.log10(t1 / t0) * steps_per_decade)) + 1)) \
+        if t1 > t0 else np.zeros(0)
+    return np.unique(np.concatenate([[0.0], times, extra]))
+
+
+def _nodal_pressure(r, lam, w):
+    """``lam / w``; on the axis, where ``w = int phi 2 pi r dr = 0`` for the quadratic
+    element (to round-off), the pressure (an even function of ``r``) is extrapolated linearly in ``r^2``
+    from the next two nodes."""
+    p = np.zeros_like(lam)
+    pos = w > 1e-9 * w.max()
+    p[pos] = lam[pos] / w[pos]
+    if not pos[0]:
+        p1, p2, r1, r2 = p[1], p[2], r[1], r[2]
+        p[0] = max(0.0, p1 + (p1 - p2) * r1**2 / (r2**2 - r1**2)) if lam[0] > 0 else 0.0
+    return p
+
+
+def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5, domain=None,
+                grading=1.3, steps_per_decade=20, solver="auto", maxiter=100):
+    """Creep indentation by a rigid sphere under a step load (axisymmetric FEM).
+
+    Parameters
+    ----------
+    material : bem.Material
+    radius : float
+        Sphere radius ``R`` (m).
+    load : float
+        Normal force ``P`` (N), applied at ``t = 0`` and held.
+    times : array_like
+        Output times (s), ``>= 0``; ``0`` means ``0+`` (glassy response).
+    resolution : int
+        Core elements (9-node) per glassy Hertz radius.
+    contact_band : float
+        Radius of the candidate contact band and uniform core, in relaxed Hertz radii.
+    domain : float, optional
+        Block radius = depth (m); default 1000 relaxed Hertz radii. The approach carries
+        a truncation error of order ``a / domain`` (measured -2.5 % at 40 radii, 0.1 % at
+        1000); the grading makes the large block cheap.
+    grading : float
+        Element growth ratio outside the core, in (1, 2].
+    steps_per_decade : int
+        Time steps per decade of time (see :func:`time_grid`).
+    solver : {"auto", "splu", "pardiso"}
+    maxiter : int
+        Active-set iteration limit per step.
+
+    Returns
+    -------
+    IndentationResult
+    """
+    if not isinstance(material, Material):
+        raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
+    R = check_positive("radius", radius)
+    P = check_positive("load", load)
+    t_out = check_array("times", times, ndim=1)
+    if np.any(t_out < 0) or np.any(np.diff(t_out) < 0):
+        raise InputError(f"times must be >= 0 s and non-decreasing, got {t_out!r}")
+    n_res = check_int("resolution", resolution, 1, 200)
+    spd = check_int("steps_per_decade", steps_per_decade, 1, 1000)
+    maxiter = check_int("maxiter", maxiter, 1)
+    band = check_positive("contact_band", contact_band)
+    if band < 1.05:
+        raise InputError(f"contact_band must be >= 1.05 relaxed radii, got {contact_band!r}")
+    ratio = check_positive("grading", grading)
+    if not 1.0 < ratio <= 2.0:
+        raise InputError(f"grading must be in (1, 2], got {grading!r}")
+    es = 1.0 - material.nu**2
+    a0 = (3 * P * R * es / (4 * material.E0)) ** (1 / 3)
+    a_inf = (3 * P * R * es / (4 * material.E_inf)) ** (1 / 3)
+    L = 1000 * a0 if domain is None else check_positive("domain", domain)
+    xb = band * a0
+    if L < 4 * xb:
+        raise InputError(f"domain must be >= 4 * contact_band * a_0 = {4 * xb!r} m, got {L!r}")
+
+    t_start = time.perf_counter()
+    hs = half_space_mesh((0.0, xb), a_inf / n_res, x_range=(0.0, L), depth=L, core_depth=xb, ratio=ratio)
+    ops = quadrature_operators(hs.mesh, "axi")
+    stepper = AxisymmetricStepper(ops, material, fixed_dofs_axisymmetric(ops.basis), solver=solver)
+    top = top_surface(ops.basis, axisymmetric=True)
+    cand = top.x <= xb * (1 + 1e-12)
+    rc = top.x[cand]
+    hc = -rc**2 / (2 * R)
+    F = np.zeros((ops.basis.N, rc.size))
+    F[top.ydofs[cand], np.arange(rc.size)] = -1.0  # unit downward ring forces (N)
+
+    grid = time_grid(t_out, material.creep_times, spd)
+    out = {k: [] for k in ("a", "d", "p", "it")}
+    U = stepper.unit_response(F)  # glassy response to unit ring forces
+    w_unit = -U[top.ydofs]
+    t_prev, active, pres = 0.0, rc <= a_inf, None
+    for t in grid:
+        e, u_hist = stepper.prepare(t - t_prev)
+        w = w_unit / e  # depression at all top nodes per unit force in this step
+        w0 = -u_hist[top.ydofs]
+        sol = solve_load_control(w[cand], hc, P, w0=w0[cand], active=active, maxiter=maxiter)
+        if sol.active[-1]:
+            raise ConvergenceError("the contact reached the edge of the candidate band; increase contact_band")
+        stepper.commit(U @ sol.lam / e + u_hist)
+        active, t_prev = sol.active, t
+        pres = _nodal_pressure(rc, sol.lam, top.weights[cand])
+        if np.any(np.isclose(t, t_out, rtol=1e-12, atol=0)):
+            lead, _ = contact_edges(np.concatenate([-rc[:0:-1], rc]),
+                                    np.concatenate([pres[:0:-1], pres]),
+                                    np.concatenate([sol.active[:0:-1], sol.active]))
+            for _ in range(int(np.sum(np.isclose(t, t_out, rtol=1e-12, atol=0)))):
+                out["a"].append(lead)
+                out["d"].append(sol.d)
+                out["p"].append(float(pres.max()))
+                out["it"].append(sol.iterations)
+    return IndentationResult(
+        times=t_out, contact_radius=np.array(out["a"]), approach=np.array(out["d"]),
+        peak_pressure=np.array(out["p"]), r=rc, pressure=pres, element_size=hs.element_size,
+        domain_size=L, n_elements=hs.n_elements, n_unknowns=stepper.n_unknowns, n_steps=grid.size,
+        iterations=np.array(out["it"]), timings={"total": time.perf_counter() - t_start})

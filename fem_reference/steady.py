@@ -1,0 +1,146 @@
+"""Monolithic steady-rolling operator of a viscoelastic block (plane strain).
+
+Frame: the indenter's. Material flows through the fixed mesh at ``-V e_x``; upstream
+(inflow, the indenter's leading side) is ``+x``. Material (SPEC §2.1, Prony form, one
+Poisson ratio for every term)::
+
+    sigma = D(nu) [E_inf eps - sum_k E_k alpha_k],    -V tau_k d(alpha_k)/dx + alpha_k = eps,
+
+with ``alpha_k`` the viscous strain of Maxwell arm ``k`` (``alpha_k = eps`` at inflow).
+Written in the mixed form of :mod:`fem_reference.kinematics` and scaled by ``E_inf``
+(``g_k = E_k / E_inf``, ``p_hat = p / E_inf``) the unknowns ``[u, p_hat, alpha_1..K]``
+satisfy::
+
+    [ K_dev      -G          -g_k B^T W D_dev ] [u]       [f / E_inf]
+    [ -G^T       -c M         g_k N^T W m^T   ] [p_hat] = [0]
+    [ -R_k B      0           L_k             ] [alpha_k] [0]
+
+``K_dev = B^T W D_dev B``, ``G = B^T W m N``, ``M = N^T W N``, ``c = 3 (1 - 2 nu)``,
+``L_k alpha = R_k eps`` the exponential streamline update of
+:mod:`fem_reference.transport`. The system is sparse and not symmetric; the internal
+variables are kept as unknowns because eliminating them fills each streamline.
+
+Boundary conditions: bottom fixed, sides on rollers (``u_x = 0``), top free except for
+the contact forces.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from .kinematics import deviatoric_matrix, inverse_bulk_modulus, mixed_blocks, trace_vector
+from .linsolve import factorize
+from .transport import streamline_operators
+
+__all__ = ["SteadyOperator", "steady_operator"]
+
+
+@dataclass
+class SteadyOperator:
+    """The factorised steady operator for one material and speed (state: the LU factors).
+
+    Use :meth:`solve` with nodal forces (N/m) on the displacement DOFs; it returns the
+    displacement (m), pressure (Pa) and viscous strains at the quadrature points.
+    """
+
+    ops: object
+    material: object
+    speed: float
+    free: np.ndarray
+    sizes: tuple
+    factor: object
+    n_unknowns: int
+
+    def solve(self, forces):
+        """Solve for nodal ``forces`` of shape ``(N_u,)`` or ``(N_u, m)`` (N/m).
+
+        Returns
+        -------
+        u : ndarray (N_u[, m])
+            Nodal displacements (m), zero on the fixed DOFs.
+        p : ndarray (ngp[, m])
+            Pressure ``-tr(sigma)/3`` at the quadrature points (Pa).
+        alpha : list of ndarray (ncomp * ngp[, m])
+            Viscous strain of each Prony term at the quadrature points.
+        """
+        forces = np.asarray(forces, dtype=float)
+        E = self.material.E_inf
+        npr = self.sizes[1]
+        rhs = np.zeros((self.n_unknowns,) + forces.shape[1:])
+        rhs[: self.free.size] = forces[self.free] / E
+        x = self.factor.solve(rhs)
+        u = np.zeros(forces.shape)
+        u[self.free] = x[: self.free.size]
+        off = self.free.size
+        p = self.ops.N_p @ x[off: off + npr] * E
+        off += npr
+        alpha = [x[off + i * self.sizes[2]: off + (i + 1) * self.sizes[2]]
+                 for i in range(self.material.moduli.size)]
+        return u, p, alpha
+
+
+def _fixed_dofs(basis):
+    bottom = basis.get_dofs("bottom").all()
+    sides = basis.get_dofs({"left", "right"}).all("u^1")
+    return np.unique(np.concatenate([bottom, sides]))
+
+
+def steady_operator(ops, material, speed, *, solver="auto"):
+    """Assemble and factor the steady operator (see module docstring).
+
+    Parameters
+    ----------
+    ops : QuadratureOperators
+        Plane-strain operators on a tensor mesh (rows of points are streamlines).
+    material : bem.Material
+    speed : float
+        Rolling speed ``V`` (m/s), ``>= 0``.
+    solver : str
+        See :func:`fem_reference.linsolve.factorize`.
+    """
+    mb = mixed_blocks(ops, material.nu)
+    K, G, M, T, BtWd, c = mb.K, mb.G, mb.M, mb.T, mb.BtWd, mb.c
+    B = ops.B
+    g = material.moduli / material.E_inf
+
+    free = np.setdiff1d(np.arange(B.shape[1]), _fixed_dofs(ops.basis))
+    Bf = B[:, free]
+    ncomp = ops.ncomp
+    eye = sp.identity(ncomp, format="csr")
+    blocks = [[K[free][:, free], -G[free]] + [-gk * BtWd[free] for gk in g],
+              [-G[free].T, -c * M] + [gk * T for gk in g]]
+    for k, tau in enumerate(material.relaxation_times):
+        Lk, Rk = streamline_operators(ops.row, ops.points[0], speed * tau)
+        row = [-(sp.kron(Rk, eye) @ Bf), None] + [None] * g.size
+        row[2 + k] = sp.kron(Lk, eye)
+        blocks.append(row)
+    A = sp.bmat(blocks, format="csc")
+    fac = factorize(A, solver)
+    return SteadyOperator(ops, material, float(speed), free, (free.size, M.shape[0], ncomp * ops.n_points),
+                          fac, A.shape[0])
+
+
+def stress_and_dissipation(ops, material, u, p, alpha):
+    """Stress (Pa, Voigt) and dissipation density (W/m^3) at the quadrature points.
+
+    ``d = sum_k (E_k / tau_k) (eps - alpha_k) . D(nu) (eps - alpha_k)`` with ``D`` the unit
+    elastic matrix (its volumetric part is dropped for ``nu = 0.5``, where it vanishes).
+    """
+    kind, nu = ops.kind, material.nu
+    m = trace_vector(kind)
+    ddev = deviatoric_matrix(kind, nu)
+    c = inverse_bulk_modulus(nu)
+    d_full = ddev + (np.outer(m, m) / c if c > 0 else 0.0)
+    ncomp = ops.ncomp
+    eps = (ops.B @ u).reshape(-1, ncomp)
+    s_eff = material.E_inf * eps
+    diss = np.zeros(eps.shape[0])
+    for Ek, tau, a in zip(material.moduli, material.relaxation_times, alpha):
+        a = a.reshape(-1, ncomp)
+        s_eff = s_eff - Ek * a
+        e = eps - a
+        diss += (Ek / tau) * np.einsum("gi,ij,gj->g", e, d_full, e)
+    sigma = s_eff @ ddev.T - p[:, None] * m[None, :]
+    return eps, sigma, diss
