@@ -164,8 +164,13 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
         Maximum number of active-set (outer, Newton) iterations.
     inner_maxiter : int, optional
         Maximum operator products per inner solve (default ``20 sqrt(N) + 200``).
+    inner_eta : float
+        Relative tolerance of the inner solves while the contact set still changes.
     initial : ndarray, optional
         Warm start pressure (Pa), e.g. the solution at a neighbouring speed.
+    relax_inner : bool
+        Loosen the inner tolerance again (x3, up to ``inner_eta``) after each full step;
+        with ``False`` it only ever tightens (x0.1 after each damped step).
     """
     shape = heights.shape
     ht = heights - heights.max()
@@ -251,8 +256,9 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
         # inexact Newton: loose inner solves while the set changes, tight once it has settled
         p_new, u_new, d_new = newton_point(new, p, u, eta if changed else 0.0)
         g_new = u_new - ht - d_new
-        # Symmetric problems take plain (undamped) active-set steps unless they stop making
-        # progress; non-symmetric ones, and unchanged sets (a more accurate solve), are damped.
+        # Non-symmetric problems are damped by the line search; symmetric ones take plain
+        # active-set steps unless the residual rises three times running. An unchanged set
+        # (the same system solved more accurately) always takes the full step.
         t = _line_search(p, g, p_new, g_new, c) if changed and damped else 1.0
         ascents = ascents + 1 if residual_of(p_new, g_new) > residual else 0
         damped = damped or ascents >= 3
