@@ -73,14 +73,20 @@ def solve_contact(op, heights, **kwargs):
 
     Two attempts share ``maxiter`` (default 400): a fast one whose inner solves loosen again
     after full Newton steps, then, if it fails, one whose inner tolerances only tighten.
+    Strongly non-symmetric operators (symbol phase above 45 degrees) use the second
+    strategy at once, with all of ``maxiter``.
     """
     # SPEC §7: threaded BLAS on vectors of this size is slow, and 1000x slower when the other
     # core is busy; the FFTs keep their own workers.
     with threadpool_limits(limits=1, user_api="blas"):
         raise_on_failure = kwargs.pop("raise_on_failure", True)
         maxiter = kwargs.pop("maxiter", 400)
-        first = _solve_contact(op, heights, raise_on_failure=False, maxiter=(maxiter + 1) // 2, **kwargs)
-        if first.success or maxiter < 2:
+        # strongly non-symmetric operators (phase > 45 degrees) go straight to the careful strategy
+        careful = _max_phase(op) > np.pi / 4
+        first = _solve_contact(op, heights, raise_on_failure=False,
+                               maxiter=maxiter if careful else (maxiter + 1) // 2,
+                               relax_inner=not careful, **kwargs)
+        if first.success or maxiter < 2 or careful:
             if not first.success and raise_on_failure:
                 raise ConvergenceError(first.message, first)
             return first
