@@ -250,9 +250,6 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
     outer = 1
     damped, ascents = not op.is_symmetric, 0
 
-    def residual_of(p, g):
-        return complementarity_residual(p, g, p_ref, h_ref)
-
     while residual > rtol and outer < maxiter:
         outer += 1
         new = p - c * g > 0
@@ -266,7 +263,8 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
         # active-set steps unless the residual rises three times running. An unchanged set
         # (the same system solved more accurately) always takes the full step.
         t = _line_search(p, g, p_new, g_new, c) if changed and damped else 1.0
-        ascents = ascents + 1 if residual_of(p_new, g_new) > residual else 0
+        residual_new = complementarity_residual(p_new, g_new, p_ref, h_ref)
+        ascents = ascents + 1 if residual_new > residual else 0
         damped = damped or ascents >= 3
         # damped step: the inner solves were too loose for this stage; full step: loosen again
         if t < 1.0:
@@ -279,7 +277,8 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
             p, u, g = p + t * (p_new - p), u + t * (u_new - u), g + t * (g_new - g)
             delta += t * (d_new - delta)
         contact = new
-        previous, residual = residual, complementarity_residual(p, g, p_ref, h_ref)
+        previous = residual
+        residual = residual_new if t == 1.0 else complementarity_residual(p, g, p_ref, h_ref)
         if not changed and residual > 0.5 * previous:  # settled but stalled: inner accuracy too low
             tighten *= 0.1
         log.debug("active set %d: %d changes, step %.3g, residual %.3e, contact %.4f, %d products",
