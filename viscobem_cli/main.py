@@ -1,6 +1,9 @@
 """``viscobem`` command line.
 
-    viscobem run [SCENE.toml] [--out DIR]     run a study (the seed paper's by default)
+    viscobem run [SCENE.toml | NAME] [--out DIR] [--workers N] [--scheduler ADDR]
+                                              run a study (the seed paper's by default;
+                                              NAME: a built-in scene, e.g. seed_figures);
+                                              rerun on the same DIR to resume a sweep
     viscobem bench periodic [--quick] --out DIR   benchmark the periodic BEM
     viscobem scene                            print the built-in default scene
 
@@ -19,16 +22,24 @@ def _cmd_run(args):
     from .study import run_scene
 
     scene = scenes.load(args.scene)
+    if args.workers is not None and args.workers < 1:
+        raise InputError(f"--workers must be an integer >= 1, got {args.workers}")
     print(f"viscobem run: {scene.title}")
-    print(f"  surface {scene.surface.shape} on {scene.surface.length} m, load {scene.load} N, "
+    print(f"  surface {scene.surface.shape} on {scene.surface.length} m x {len(scene.realisations)} "
+          f"realisation(s), load {', '.join(f'{x:g}' for x in scene.loads)} N, "
           f"{scene.speeds.size} speeds; writing to {args.out}")
-    record = run_scene(scene, args.out, progress=not args.no_progress)
+    record = run_scene(scene, args.out, progress=not args.no_progress, scheduler=args.scheduler,
+                       workers=args.workers)
+    if record["resumed_points"]:
+        print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
     curve = record["friction_curve"]
-    print(f"  {'xi':>10} {'speed (m/s)':>12} {'friction':>10} {'contact':>9} {'iters':>6}")
+    print(f"  {'xi':>10} {'speed (m/s)':>12} {'friction':>10} {'s.e.':>9} {'contact':>9} {'iters':>6}")
     for i, xi in enumerate(curve["xi"]):
         if curve["success"][i]:
+            se = curve["friction_se"][i]
             print(f"  {xi:10.3e} {curve['speed'][i]:12.4e} {curve['friction'][i]:10.5f} "
-                  f"{curve['contact_fraction'][i]:9.4f} {curve['iterations'][i]:6d}")
+                  f"{'' if se is None else f'{se:9.5f}':>9} {curve['contact_fraction'][i]:9.4f} "
+                  f"{curve['iterations'][i]:6d}")
         else:
             print(f"  {xi:10.3e} {curve['speed'][i]:12.4e}  FAILED: {curve['message'][i]}")
     print(f"  total {record['stages']['total']:.1f} s; files: {', '.join(record['files'])}")
@@ -55,9 +66,13 @@ def build_parser():
     parser.add_argument("-v", "--verbose", action="store_true", help="log solver progress")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run a scene (default: the seed paper's study)")
-    run.add_argument("scene", nargs="?", default=None, help="scene TOML file")
+    run.add_argument("scene", nargs="?", default=None,
+                     help="scene TOML file or the name of a built-in scene (seed, seed_figures)")
     run.add_argument("--out", default="viscobem-out", help="output folder (default: viscobem-out)")
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
+    run.add_argument("--workers", type=int, default=None, help="processes (overrides [solver] workers)")
+    run.add_argument("--scheduler", default=None,
+                     help="dask.distributed scheduler address, e.g. tcp://host:8786 (overrides [solver] scheduler)")
     run.set_defaults(func=_cmd_run)
     scene = sub.add_parser("scene", help="print the built-in default scene (a template)")
     scene.set_defaults(func=_cmd_scene)

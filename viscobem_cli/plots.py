@@ -1,4 +1,11 @@
-"""PNG plots of a study: the friction curve and a pressure map (matplotlib, Agg)."""
+"""PNG plots of a study (matplotlib, Agg backend).
+
+Friction and contact area against xi (log x axis, ensemble error bars, Persson overlay),
+pressure / contact / deformed-surface maps with the sliding direction (+x) marked, polar
+plots of m2(theta) and the contact-PSD contour with its fitted ellipse, and the anisotropy
+measures against xi. Maps are drawn at ``[analysis] plot_xi`` (nearest sweep point) or at
+the friction peak.
+"""
 from pathlib import Path
 
 import numpy as np
@@ -13,61 +20,204 @@ def _pyplot():
     return plt
 
 
-def friction_curve(scene, curve, path):
-    """Friction (both forms) and contact fraction against xi, log axes."""
+def _arr(values):
+    return np.array([np.nan if v is None else v for v in values], dtype=float)
+
+
+def _sliding_arrow(ax):
+    ax.annotate("", xy=(0.9, 1.04), xytext=(0.6, 1.04), xycoords="axes fraction",
+                arrowprops={"arrowstyle": "->", "lw": 2})
+    ax.text(0.58, 1.04, "sliding (+x)", transform=ax.transAxes, ha="right", va="center", fontsize=8)
+
+
+def _mark_peak(ax, xi, peak):
+    if peak is not None:
+        ax.axvline(xi[peak], color="0.6", ls=":", lw=1)
+
+
+def friction_curve(scene, record, path):
+    """Friction (both forms, mean ± standard error) against xi; Persson's theory if computed."""
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
-    ok = curve.success
-    ax.semilogx(scene.xi[ok], curve.friction[ok], "o-", label=r"$\mu$ (dissipation)")
-    ax.semilogx(scene.xi[ok], curve.friction_eq6[ok], "s--", ms=4, label=r"$\mu$ (eq. 6)")
+    xi = np.asarray(scene.xi)
+    for k, curve in enumerate(record["curves"]):
+        tag = f" ({curve['load']:g} N)" if len(record["curves"]) > 1 else ""
+        mu, se = _arr(curve["friction"]), _arr(curve["friction_se"])
+        ax.errorbar(xi, mu, yerr=None if np.all(np.isnan(se)) else se, fmt="o-", ms=4, capsize=2,
+                    label=r"BEM $\mu$ (dissipation)" + tag)
+        if k == 0:
+            ax.plot(xi, _arr(curve["friction_eq6"]), "s--", ms=3, label=r"BEM $\mu$ (eq. 6)")
+    for row in record.get("persson", []):
+        ax.plot(xi, row["friction"], "k-", lw=1.2, label=f"Persson (2001), {row['pressure']:.3g} Pa")
+    ax.set_xscale("log")
     ax.set_xlabel(r"$\xi = v\,\tau / L$")
     ax.set_ylabel("friction coefficient")
     ax.grid(True, which="both", alpha=0.3)
-    ax2 = ax.twinx()
-    ax2.semilogx(scene.xi[ok], curve.contact_fraction[ok], "^:", color="tab:green", label="contact fraction")
-    ax2.set_ylabel("contact fraction", color="tab:green")
-    lines = ax.get_legend_handles_labels()
-    lines2 = ax2.get_legend_handles_labels()
-    ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], loc="best", fontsize=8)
-    ax.set_title(scene.title, fontsize=9)
-    fig.savefig(path, dpi=120)
+    ax.legend(fontsize=8, loc="best")
+    k = len(scene.realisations)
+    ax.set_title(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), fontsize=9)
+    fig.savefig(path, dpi=110)
     plt.close(fig)
 
 
-def pressure_map(surface, result, xi, path):
-    """Pressure (1-D: profile; 2-D: map with the sliding direction marked)."""
+def contact_area(scene, record, path):
+    """True contact fraction against xi (log axes), with Persson's P(q1) if computed."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.0, 4.0), constrained_layout=True)
+    xi = np.asarray(scene.xi)
+    for curve in record["curves"]:
+        a, se = _arr(curve["contact_fraction"]), _arr(curve["contact_fraction_se"])
+        ax.errorbar(xi, a, yerr=None if np.all(np.isnan(se)) else se, fmt="^-", ms=4, capsize=2,
+                    label=f"BEM, {curve['load']:g} N")
+    for row in record.get("persson", []):
+        ax.plot(xi, row["contact_fraction"], "k-", lw=1.2, label="Persson P(q1)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"$\xi = v\,\tau / L$")
+    ax.set_ylabel("contact area fraction")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0):
+    """A 2-D map (profile for 1-D) with the sliding direction marked."""
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(5.6, 4.6), constrained_layout=True)
     x = surface.x * 1e3
     if surface.ndim == 1:
-        ax.plot(x, result.pressure / 1e6)
+        ax.plot(x, field * scale)
         ax.set_xlabel("x (mm)")
-        ax.set_ylabel("pressure (MPa)")
+        ax.set_ylabel(label)
     else:
         ext = [0, surface.length * 1e3, 0, surface.length * 1e3]
-        im = ax.imshow(result.pressure.T / 1e6, origin="lower", extent=ext, cmap="magma", interpolation="nearest")
-        fig.colorbar(im, ax=ax, label="pressure (MPa)")
+        im = ax.imshow(np.asarray(field).T * scale, origin="lower", extent=ext, cmap=cmap,
+                       interpolation="nearest")
+        fig.colorbar(im, ax=ax, label=label)
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm)")
-        ax.annotate("", xy=(0.9, 1.04), xytext=(0.6, 1.04), xycoords="axes fraction",
-                    arrowprops={"arrowstyle": "->", "lw": 2})
-        ax.text(0.58, 1.04, "sliding (+x)", transform=ax.transAxes, ha="right", va="center", fontsize=8)
-    ax.set_title(rf"$\xi$ = {xi:.3g}: $\mu$ = {result.friction:.4g}, contact {100 * result.contact_fraction:.2f} %",
-                 fontsize=9, pad=18)
-    fig.savefig(path, dpi=120)
+        _sliding_arrow(ax)
+    ax.set_title(rf"$\xi$ = {xi:.3g}: {title}", fontsize=9, pad=18)
+    fig.savefig(path, dpi=110)
     plt.close(fig)
 
 
-def write_all(scene, curve, fields, out):
+def polar_m2(scene, record, l, i, path):
+    """m2(theta) of the deformed surface (ensemble tensor) at xi_i and at the lowest xi."""
+    from bem.anisotropy import _from_tensor
+
+    plt = _pyplot()
+    pts = [p for p in record["points"] if p["l"] == l and p.get("moments")]
+    theta = np.linspace(0, 2 * np.pi, 361)
+    fig = plt.figure(figsize=(5.2, 5.0), constrained_layout=True)
+    ax = fig.add_subplot(projection="polar")
+    order = np.argsort(scene.speeds, kind="stable")
+    for idx, style, name in [(int(order[0]), "--", "lowest"), (i, "-", "")]:
+        ms = [p["moments"] for p in pts if p["i"] == idx]
+        if not ms:
+            continue
+        m = _from_tensor(*(np.mean([d[k] for d in ms]) for k in ("m20", "m02", "m11")))
+        r = m.m2(theta) / m.m2_max
+        ax.plot(theta, r, style, label=rf"$\xi$ = {scene.xi[idx]:.3g} {name}: $\gamma$ = {m.gamma:.3f}, "
+                                      rf"$\Theta$ = {np.degrees(m.theta_max):.0f}°")
+    ax.set_title(r"$m_2(\theta) / \max m_2$ of the deformed surface (sliding along $\theta = 0$)", fontsize=9)
+    ax.legend(fontsize=7, loc="lower center", bbox_to_anchor=(0.5, -0.22))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def psd_contour(scene, cpsd, ellipse, xi, path):
+    """C_chi / C_chi(0) around q = 0 with the level contour and the fitted ellipse."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(5.4, 4.8), constrained_layout=True)
+    qL = 2 * np.pi / scene.surface.length
+    reach = 2.2 * ellipse.semi_axes[0] / qL
+    q = cpsd.q / qL
+    sel = np.abs(q) <= reach
+    z = cpsd.level_map[np.ix_(sel, sel)]
+    im = ax.pcolormesh(q[sel], q[sel], z.T, shading="nearest", cmap="viridis")
+    fig.colorbar(im, ax=ax, label=r"$C_\chi(q) / C_\chi(0)$")
+    ax.contour(q[sel], q[sel], z.T, levels=[ellipse.level], colors="w", linewidths=1)
+    t = np.linspace(0, 2 * np.pi, 200)
+    vals, vecs = np.linalg.eigh(np.array([[ellipse.A, ellipse.B], [ellipse.B, ellipse.D]]))
+    pts = vecs @ np.vstack([np.cos(t) / np.sqrt(vals[0]), np.sin(t) / np.sqrt(vals[1])]) / qL
+    ax.plot(pts[0], pts[1], "r--", lw=1.2, label=f"ellipse: aspect {ellipse.aspect_ratio:.3f}, "
+                                                    f"q_x/q_y extent {ellipse.stretch_x:.3f}")
+    ax.set_aspect("equal")
+    ax.set_xlabel(r"$q_x / q_L$ (sliding direction)")
+    ax.set_ylabel(r"$q_y / q_L$")
+    ax.legend(fontsize=7, loc="upper right")
+    ax.set_title(rf"contact PSD at $\xi$ = {xi:.3g}, contour {ellipse.level:g}", fontsize=9)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def anisotropy_vs_xi(scene, record, path, peak):
+    """gamma (own and relative to the low-speed surface) and the C_chi ellipse against xi."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+    xi = np.asarray(scene.xi)
+    if "anisotropy" in record:
+        a = record["anisotropy"][0]
+        ax.errorbar(xi, _arr(a["gamma"]), yerr=_arr(a["gamma_se"]), fmt="o-", ms=4, capsize=2,
+                    label=r"$\gamma$ of the deformed surface")
+        ax.errorbar(xi, _arr(a["gamma_relative"]), yerr=_arr(a["gamma_relative_se"]), fmt="s-", ms=4,
+                    capsize=2, label=r"$\gamma$ relative to the lowest-speed surface")
+    if "contact_psd" in record:
+        c = record["contact_psd"][0]
+        ax.plot(xi, 1 / _arr(c["stretch_x"]), "^-", ms=4,
+                label=r"$C_\chi$ contour: extent $q_y/q_x$")
+    _mark_peak(ax, xi, peak)
+    ax.set_xscale("log")
+    ax.set_xlabel(r"$\xi = v\,\tau / L$  (dotted: friction peak)")
+    ax.set_ylabel("anisotropy ratio (1 = isotropic)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_index(scene, record):
+    """Speed index of the maps: nearest to ``plot_xi``, else the friction peak."""
+    mu = _arr(record["friction_curve"]["friction"])
+    if np.all(np.isnan(mu)):
+        return None, None
+    peak = int(np.nanargmax(mu))
+    if scene.plot_xi is None:
+        return peak, peak
+    return int(np.argmin(np.abs(np.log(scene.xi / scene.plot_xi)))), peak
+
+
+def write_all(scene, record, fields, extras, out):
     """Write the plots of a study; return the file names."""
     out = Path(out)
     names = []
-    if scene.outputs["friction_curve"] and np.any(curve.success):
-        friction_curve(scene, curve, out / "friction_curve.png")
-        names.append("friction_curve.png")
+    i, peak = plot_index(scene, record)
+    if i is None:
+        return names
+    if scene.outputs["friction_curve"]:
+        friction_curve(scene, record, out / "friction_curve.png")
+        contact_area(scene, record, out / "contact_area.png")
+        names += ["friction_curve.png", "contact_area.png"]
     if fields:
-        # the pressure map at the friction peak, where the contact is most distorted
-        i = max(fields, key=lambda k: fields[k].friction)
-        pressure_map(scene.surface, fields[i], scene.xi[i], out / "pressure_map.png")
-        names.append("pressure_map.png")
+        j = i if i in fields else min(fields, key=lambda k: abs(k - i))
+        f, x = fields[j], scene.xi[j]
+        field_map(scene.surface, f.pressure, x, out / "pressure_map.png", label="pressure (MPa)", cmap="magma",
+                  scale=1e-6, title=rf"$\mu$ = {f.friction:.4g}, contact {100 * f.contact_fraction:.2f} %")
+        field_map(scene.surface, f.pressure > 0, x, out / "contact_map.png", label="in contact", cmap="gray_r",
+                  title=f"contact area {100 * f.contact_fraction:.2f} % (realisation 0)")
+        field_map(scene.surface, f.displacement, x, out / "deformed_surface.png", label="displacement (µm)",
+                  cmap="viridis", scale=1e6, title="deformed surface (displacement into the solid)")
+        names += ["pressure_map.png", "contact_map.png", "deformed_surface.png"]
+    if scene.outputs["anisotropy"]:
+        polar_m2(scene, record, 0, i, out / "polar_m2.png")
+        names.append("polar_m2.png")
+    if extras.get("psd") and (0, i) in extras["psd"]:
+        cpsd, ell = extras["psd"][(0, i)]
+        psd_contour(scene, cpsd, ell, scene.xi[i], out / "contact_psd.png")
+        names.append("contact_psd.png")
+    if scene.outputs["anisotropy"] or scene.outputs["contact_psd"]:
+        anisotropy_vs_xi(scene, record, out / "anisotropy.png", peak)
+        names.append("anisotropy.png")
     return names

@@ -9,14 +9,17 @@ Schema (SI units; unknown keys are an error that lists the valid ones)::
                     dma_frequency_unit = "rad/s" | "Hz"; dma_terms_per_decade = 2.0)
     [surface]    kind = "self_affine" | "sinusoid" | "file", length (m), n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
-                              anisotropy, dim (1 or 2)
+                              anisotropy, dim (1 or 2), realisations (K: seeds seed..seed+K-1)
                  sinusoid:    amplitude (m), wavelength (m), dim, direction
                  file:        path (.npy/.txt/.csv, relative to the scene file), unit
-    [loading]    load (N; N/m for 1-D profiles) and speeds = [...] (m/s) or
+    [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced, xi = v tau / L; tau = xi_time or the
                  material's longest creep time)
-    [solver]     rtol, maxiter, warm_start
-    [outputs]    friction_curve, fields, plots, vtk  (booleans)
+    [solver]     rtol, maxiter, warm_start, workers (processes, default 1), chunk (speeds per
+                 task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol
+    [outputs]    friction_curve, fields, plots, vtk, anisotropy, contact_psd, persson (booleans)
+    [analysis]   contact_level (C_chi/C_chi(0) of the contour, 0.476), psd_smoothing (modes, 1.0),
+                 plot_xi (xi of the maps, polar and PSD plots; default: the friction peak)
 """
 import sys
 from dataclasses import dataclass, field
@@ -33,14 +36,16 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 SCHEMA = {
-    "": {"title", "material", "surface", "loading", "solver", "outputs"},
+    "": {"title", "material", "surface", "loading", "solver", "outputs", "analysis"},
     "material": {"nu", "E", "E0", "E_inf", "creep_time", "relaxation_time", "moduli", "times",
                  "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade"},
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
-                "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit"},
+                "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
+                "realisations"},
     "loading": {"load", "speeds", "xi", "xi_time"},
-    "solver": {"rtol", "maxiter", "warm_start"},
-    "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd"},
+    "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol"},
+    "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson"},
+    "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
 SURFACE_KINDS = ("self_affine", "sinusoid", "file")
 DEFAULT_SCENE = Path(__file__).with_name("scenes") / "seed.toml"
@@ -63,6 +68,26 @@ class Scene:
     outputs: dict = field(default_factory=dict)
     source: str = ""
     raw: dict = field(default_factory=dict, repr=False)
+    realisations: tuple = ()
+    loads: tuple = ()
+    workers: int = 1
+    chunk: int = 0
+    scheduler: str = None
+    fold_tol: float = 1e-6
+    contact_level: float = 0.476
+    psd_smoothing: float = 1.0
+    plot_xi: float = None
+
+    def __post_init__(self):
+        if not self.realisations:
+            object.__setattr__(self, "realisations", (self.surface,))
+        if not self.loads:
+            object.__setattr__(self, "loads", (self.load,))
+
+    @property
+    def seeds(self):
+        """Seed of each realisation (None for surfaces that are not random)."""
+        return tuple(s.metadata.get("seed") for s in self.realisations)
 
 
 def _check_keys(table, section):
@@ -118,16 +143,24 @@ def _surface(t, base):
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
+    count = t.get("realisations", 1)
+    if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+        raise InputError(f"[surface] realisations must be an integer >= 1, got {count!r}")
     if kind == "self_affine":
-        allowed = {"hurst", "scales", "rms_height", "rms_slope", "seed", "rolloff", "anisotropy", "dim"}
+        allowed = {"hurst", "scales", "rms_height", "rms_slope", "rolloff", "anisotropy", "dim"}
         args = {k: t[k] for k in allowed if k in t}
-        return surfaces.self_affine(t["n"], t["length"], **args)
+        seed = t.get("seed", 0)
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            raise InputError(f"[surface] seed must be an integer >= 0, got {seed!r}")
+        return tuple(surfaces.self_affine(t["n"], t["length"], seed=seed + k, **args) for k in range(count))
+    if count != 1:
+        raise InputError(f"[surface] realisations must be 1 for kind = {kind!r} (not random), got {count!r}")
     if kind == "sinusoid":
         args = {k: t[k] for k in ("amplitude", "wavelength", "dim", "direction") if k in t}
-        return surfaces.sinusoid(t["n"], t["length"], **args)
+        return (surfaces.sinusoid(t["n"], t["length"], **args),)
     if "path" not in t:
         raise InputError("[surface] path is required for kind = 'file'")
-    return surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m"))
+    return (surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m")),)
 
 
 def _speeds(t, material, surface):
@@ -163,28 +196,78 @@ def parse(text, *, base=Path("."), source="<string>"):
         if section not in raw:
             raise InputError(f"scene {source}: section [{section}] is required")
     material = _material(raw["material"], base)
-    surface = _surface(raw["surface"], base)
+    realisations = _surface(raw["surface"], base)
+    surface = realisations[0]
     speeds, xi, tau = _speeds(raw["loading"], material, surface)
+    loads = _loads(raw["loading"]["load"])
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
+    run = _solver(solver)
+    analysis = raw.get("analysis", {})
+    _check_keys(analysis, "analysis")
     outputs = {"friction_curve": True, "fields": True, "plots": True, "vtk": False,
-               "anisotropy": False, "contact_psd": False}
+               "anisotropy": False, "contact_psd": False, "persson": False}
     _check_keys(raw.get("outputs", {}), "outputs")
     outputs.update(raw.get("outputs", {}))
     for key, value in outputs.items():
         if not isinstance(value, bool):
             raise InputError(f"[outputs] {key} must be true or false, got {value!r}")
-    for key in ("anisotropy", "contact_psd"):
-        if outputs[key]:
-            raise InputError(f"[outputs] {key} = true is not available in this version of viscobem")
+    for key in ("anisotropy", "contact_psd", "persson"):
+        if outputs[key] and surface.ndim != 2:
+            raise InputError(f"[outputs] {key} needs a 2-D surface (dim = 2), got a 1-D profile")
+    level = analysis.get("contact_level", 0.476)
+    if not (isinstance(level, (int, float)) and 0 < level < 1):
+        raise InputError(f"[analysis] contact_level must be in (0, 1), got {level!r}")
+    smoothing = analysis.get("psd_smoothing", 1.0)
+    if not (isinstance(smoothing, (int, float)) and 0.25 <= smoothing <= surface.n / 4):
+        raise InputError(f"[analysis] psd_smoothing must be in [0.25, n / 4] grid modes, got {smoothing!r}")
+    plot_xi = analysis.get("plot_xi")
+    if plot_xi is not None and not (isinstance(plot_xi, (int, float)) and plot_xi > 0):
+        raise InputError(f"[analysis] plot_xi must be a number > 0, got {plot_xi!r}")
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
-                 load=float(raw["loading"]["load"]), speeds=speeds, xi=xi, xi_time=tau,
-                 rtol=float(solver.get("rtol", 1e-8)), maxiter=int(solver.get("maxiter", 400)),
-                 warm_start=bool(solver.get("warm_start", True)), outputs=outputs, source=source, raw=raw)
+                 load=loads[0], speeds=speeds, xi=xi, xi_time=tau, outputs=outputs, source=source,
+                 raw=raw, realisations=realisations, loads=loads, contact_level=float(level),
+                 psd_smoothing=float(smoothing), plot_xi=None if plot_xi is None else float(plot_xi), **run)
+
+
+def _loads(value):
+    values = value if isinstance(value, list) else [value]
+    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0 for v in values):
+        raise InputError(f"[loading] load must be a number > 0 or a non-empty list of them "
+                         f"(N; N/m for 1-D profiles), got {value!r}")
+    return tuple(float(v) for v in values)
+
+
+def _solver(t):
+    def integer(key, default, low):
+        v = t.get(key, default)
+        if isinstance(v, bool) or not isinstance(v, int) or v < low:
+            raise InputError(f"[solver] {key} must be an integer >= {low}, got {v!r}")
+        return v
+
+    rtol = t.get("rtol", 1e-8)
+    if not (isinstance(rtol, (int, float)) and 0 < rtol < 1):
+        raise InputError(f"[solver] rtol must be in (0, 1), got {rtol!r}")
+    fold = t.get("fold_tol", 1e-6)
+    if not (isinstance(fold, (int, float)) and 0 <= fold < 1):
+        raise InputError(f"[solver] fold_tol must be in [0, 1) (0: no folding), got {fold!r}")
+    scheduler = t.get("scheduler")
+    if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
+        raise InputError(f"[solver] scheduler must be an address such as 'tcp://host:8786', got {scheduler!r}")
+    return {"rtol": float(rtol), "maxiter": integer("maxiter", 400, 1),
+            "warm_start": bool(t.get("warm_start", True)), "workers": integer("workers", 1, 1),
+            "chunk": integer("chunk", 0, 0), "scheduler": scheduler, "fold_tol": float(fold)}
+
+
+def builtin_scenes():
+    """Names of the built-in scenes (``viscobem run NAME``)."""
+    return sorted(p.stem for p in DEFAULT_SCENE.parent.glob("*.toml"))
 
 
 def load(path=None):
-    """Read a scene file (the built-in seed study when ``path`` is None)."""
+    """Read a scene file (the built-in seed study when ``path`` is None; a built-in by name)."""
+    if path is not None and not Path(path).suffix and str(path) in builtin_scenes():
+        path = DEFAULT_SCENE.parent / f"{path}.toml"
     path = Path(path) if path is not None else DEFAULT_SCENE
     try:
         text = path.read_text()
