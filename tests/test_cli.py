@@ -67,9 +67,12 @@ def test_unrequested_outputs_are_not_written(tmp_path):
     path = tmp_path / "s.toml"
     path.write_text(SMALL.replace("vtk = true", "vtk = false\nplots = false\nfields = false"))
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
-    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == ["results.json"]
+    # points/ holds the per-point records a rerun resumes from (no fields asked for: json only)
+    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == ["points", "results.json"]
+    assert all(p.suffix == ".json" for p in (tmp_path / "o" / "points").iterdir())
     rec = json.loads((tmp_path / "o" / "results.json").read_text())
-    assert set(rec["stages"]) == {"friction_curve", "total"}
+    assert rec["stages_run"] == ["friction_curve"]
+    assert set(rec["stages"]) == {"fold", "friction_curve", "point_solve", "total"}
 
 
 @pytest.mark.parametrize("bad, words", [

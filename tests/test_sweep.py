@@ -1,0 +1,178 @@
+"""Sweeps: resume after an interruption, process pool and Dask give the same points,
+ensembles (mean, standard error), only requested stages run, folding, scene checks."""
+import json
+
+import numpy as np
+import pytest
+
+import bem
+from bem.errors import InputError
+from viscobem_cli import scene as scenes
+from viscobem_cli.study import fold_material, run_scene
+
+BASE = """
+title = "sweep test"
+[material]
+E0 = 3.3333333333333335e6
+E_inf = 1.0e7
+creep_time = 0.01
+[surface]
+kind = "self_affine"
+length = 0.01
+n = 32
+hurst = 0.8
+scales = 8
+rms_height = 2.0e-5
+seed = 5
+realisations = 2
+[loading]
+load = 0.3
+xi = { start = 1e-3, stop = 1e-1, num = 4 }
+[solver]
+rtol = 1e-9
+[outputs]
+fields = false
+plots = false
+"""
+
+
+def _scene(text=BASE, **replace):
+    for old, new in replace.items():
+        text = text.replace(old, new)
+    return scenes.parse(text)
+
+
+def _numbers(rec):
+    return {(p["r"], p["l"], p["i"]): (p["friction"], p["contact_fraction"]) for p in rec["points"]}
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory):
+    return run_scene(_scene(), tmp_path_factory.mktemp("ref"), progress=False)
+
+
+def test_ensemble_reports_mean_and_standard_error(reference):
+    curve = reference["friction_curve"]
+    pts = reference["points"]
+    assert len(pts) == 8 and reference["seeds"] == [5, 6]
+    for i in range(4):
+        mu = [p["friction"] for p in pts if p["i"] == i]
+        assert curve["friction"][i] == pytest.approx(np.mean(mu), rel=1e-14)
+        assert curve["friction_se"][i] == pytest.approx(np.std(mu, ddof=1) / np.sqrt(2), rel=1e-12)
+    # the realisations are different surfaces: their friction differs
+    assert all(se > 0 for se in curve["friction_se"])
+
+
+def test_interrupted_sweep_resumes_where_it_stopped(tmp_path, monkeypatch, reference):
+    real_solve, calls = bem.solve, []
+
+    def interrupted(*args, **kw):
+        if len(calls) == 5:
+            raise KeyboardInterrupt  # the user presses Ctrl-C during the 6th solve
+        calls.append(kw["speed"])
+        return real_solve(*args, **kw)
+
+    monkeypatch.setattr(bem, "solve", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        run_scene(_scene(), tmp_path, progress=False)
+    partial = json.loads((tmp_path / "results.json").read_text())
+    assert not partial["complete"] and len(partial["points"]) == 5  # every finished point is on disk
+    assert len(list((tmp_path / "points").glob("*.json"))) == 5
+    calls.clear()
+    monkeypatch.setattr(bem, "solve", lambda *a, **kw: (calls.append(kw["speed"]), real_solve(*a, **kw))[1])
+    rec = run_scene(_scene(), tmp_path, progress=False)
+    assert rec["resumed_points"] == 5 and len(calls) == 3  # only the 3 missing points were solved
+    assert rec["complete"] and rec["all_converged"]
+    # same answers as an uninterrupted run, to the solver tolerance (different warm starts)
+    for key, (mu, a) in _numbers(reference).items():
+        assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
+        assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
+    # a changed study in the same folder does not reuse the old points
+    rec2 = run_scene(_scene(**{"load = 0.3": "load = 0.35"}), tmp_path, progress=False)
+    assert rec2["resumed_points"] == 0
+
+
+def test_process_pool_gives_the_same_points(tmp_path, reference):
+    rec = run_scene(_scene(), tmp_path, progress=False, workers=2)
+    assert rec["solver"]["workers"] == 2 and rec["all_converged"]
+    for key, (mu, a) in _numbers(reference).items():
+        # warm starts differ between chunks: equal to the complementarity tolerance
+        assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
+
+
+def test_dask_local_cluster_gives_the_same_points(tmp_path, reference):
+    distributed = pytest.importorskip("dask.distributed", reason="dask[distributed] is not installed "
+                                      "(pip install '.[dask]')")
+    with distributed.LocalCluster(processes=False, n_workers=1, threads_per_worker=1,
+                                  dashboard_address=None) as cluster:
+        text = BASE.replace("rtol = 1e-9", f'rtol = 1e-9\nscheduler = "{cluster.scheduler_address}"')
+        rec = run_scene(scenes.parse(text), tmp_path, progress=False)
+    assert rec["solver"]["scheduler"] == cluster.scheduler_address and rec["all_converged"]
+    for key, (mu, a) in _numbers(reference).items():
+        assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
+
+
+def test_scene_without_anisotropy_does_not_compute_it(tmp_path, monkeypatch):
+    from bem import anisotropy, persson
+
+    def forbidden(*a, **k):
+        raise AssertionError("computed although the scene did not ask for it")
+
+    for mod, names in [(anisotropy, ["spectral_moments", "contact_psd", "psd_contour", "relative_moments"]),
+                       (persson, ["friction", "friction_discrete", "friction_for_surface"])]:
+        for name in names:
+            monkeypatch.setattr(mod, name, forbidden)
+    rec = run_scene(_scene(), tmp_path, progress=False)
+    assert rec["stages_run"] == ["friction_curve"]
+    assert "anisotropy" not in rec and "contact_psd" not in rec and "persson" not in rec
+    assert not list((tmp_path / "points").glob("*.npz"))  # no fields stored either
+
+
+def test_requested_stages_run_and_are_timed(tmp_path):
+    text = BASE.replace("plots = false", "plots = false\nanisotropy = true\ncontact_psd = true\npersson = true")
+    rec = run_scene(scenes.parse(text), tmp_path, progress=False)
+    assert rec["stages_run"] == ["friction_curve", "anisotropy", "contact_psd", "persson"]
+    for stage in ("contact_psd", "persson", "point_anisotropy"):
+        assert rec["stages"][stage] >= 0
+    a = rec["anisotropy"][0]
+    assert a["gamma_relative"][0] == pytest.approx(1.0, rel=1e-12)  # lowest speed is the reference
+    assert all(0 < g <= 1 for g in a["gamma"])
+    c = rec["contact_psd"][0]
+    assert all(x is not None and x > 0 for x in c["aspect_ratio"])
+    assert len(rec["persson"][0]["friction"]) == 4
+
+
+def test_prony_terms_outside_the_band_are_folded():
+    # terms at 1e-12 s (relaxed) and 1e9 s (glassy over the band) around the active one
+    text = BASE.replace("E_inf = 1.0e7\ncreep_time = 0.01",
+                        "moduli = [1e6, 5e6, 2e6]\ntimes = [1e-12, 3e-3, 1e9]")
+    text = text.replace("xi = { start = 1e-3, stop = 1e-1, num = 4 }", "speeds = [1e-3, 1e-2, 1e-1, 1.0]")
+    s = scenes.parse(text)
+    m = fold_material(s)
+    assert m.moduli.size == 1 and m.relaxation_times[0] == pytest.approx(3e-3)
+    assert m.E0 == pytest.approx(s.material.E0 + 2e6)
+    # inside the band [q_L v_min, q_max v_max] the modulus changes by at most ~1e-6 E_k
+    w = np.logspace(np.log10(2 * np.pi / 0.01 * s.speeds.min()), np.log10(np.pi * 32 / 0.01 * s.speeds.max()), 50)
+    err = np.abs(m.complex_modulus(w) - s.material.complex_modulus(w)) / np.abs(s.material.complex_modulus(w))
+    assert err.max() < 1e-5
+
+
+@pytest.mark.parametrize("old, new, word", [
+    ("realisations = 2", "realisations = 0", "realisations"),
+    ("realisations = 2", "realisations = 2\nworkers = 1", "workers"),
+    ("rtol = 1e-9", "rtol = 1e-9\nworkers = 0", "workers"),
+    ("rtol = 1e-9", "rtol = 1e-9\nscheduler = 3", "scheduler"),
+    ("load = 0.3", "load = [0.3, -1]", "load"),
+    ("[outputs]", "[analysis]\ncontact_level = 1.5\n[outputs]", "contact_level"),
+])
+def test_bad_scene_values_name_the_key(old, new, word):
+    with pytest.raises(InputError, match=word):
+        _scene(**{old: new})
+
+
+def test_load_list_sweeps_loads(tmp_path):
+    rec = run_scene(_scene(**{"load = 0.3": "load = [0.2, 0.4]", "realisations = 2": "realisations = 1",
+                              "num = 4": "num = 2"}), tmp_path, progress=False)
+    assert [c["load"] for c in rec["curves"]] == [0.2, 0.4]
+    # more load, more contact at every speed
+    assert all(b > a for a, b in zip(rec["curves"][0]["contact_fraction"], rec["curves"][1]["contact_fraction"]))
