@@ -14,7 +14,9 @@ for each load and speed:
 
 Contact PSD: the indicator maps of all realisations at a point are averaged into one
 smoothed PSD (:func:`bem.anisotropy.contact_psd`) and its contour at ``contact_level`` is
-fitted by an ellipse (:func:`bem.anisotropy.psd_contour`).
+fitted by an ellipse (:func:`bem.anisotropy.psd_contour`); ``stretch_x`` (extent along
+``q_x`` over extent along ``q_y``) is also given relative to its value at the lowest speed
+(``stretch_x_relative``), since a finite ensemble keeps some anisotropy of its own.
 """
 import numpy as np
 
@@ -116,6 +118,11 @@ def contact_psd_summary(scene, recs, points_dir):
             for key in ("aspect_ratio", "orientation", "stretch_x", "semi_major", "semi_minor", "fit_residual"):
                 rows[key].append(d.get(key))
             rows["message"].append(msg)
+        # relative to the lowest speed with a fitted ellipse (the ensemble's own low-speed shape)
+        order = [int(i) for i in np.argsort(scene.speeds, kind="stable") if rows["stretch_x"][int(i)] is not None]
+        ref = rows["stretch_x"][order[0]] if order else None
+        rows["reference_xi"] = float(scene.xi[order[0]]) if order else None
+        rows["stretch_x_relative"] = [None if (x is None or ref is None) else x / ref for x in rows["stretch_x"]]
         summary.append(rows)
     return summary, maps
 

@@ -55,7 +55,10 @@ def friction_curve(scene, record, path):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="best")
     k = len(scene.realisations)
-    ax.set_title(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), fontsize=9)
+    import textwrap
+
+    ax.set_title(textwrap.fill(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), 90),
+                 fontsize=8)
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
@@ -168,6 +171,8 @@ def anisotropy_vs_xi(scene, record, path, peak):
         c = record["contact_psd"][0]
         ax.plot(xi, 1 / _arr(c["stretch_x"]), "^-", ms=4,
                 label=r"$C_\chi$ contour: extent $q_y/q_x$")
+        ax.plot(xi, 1 / _arr(c["stretch_x_relative"]), "v-", ms=4,
+                label=r"$C_\chi$ contour: $q_y/q_x$ relative to the lowest speed")
     _mark_peak(ax, xi, peak)
     ax.set_xscale("log")
     ax.set_xlabel(r"$\xi = v\,\tau / L$  (dotted: friction peak)")

@@ -13,7 +13,7 @@ Schema (SI units; unknown keys are an error that lists the valid ones)::
                  sinusoid:    amplitude (m), wavelength (m), dim, direction
                  file:        path (.npy/.txt/.csv, relative to the scene file), unit
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
-                 xi = {start, stop, num} (log-spaced, xi = v tau / L; tau = xi_time or the
+                 xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
                  material's longest creep time)
     [solver]     rtol, maxiter, warm_start, workers (processes, default 1), chunk (speeds per
                  task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol
@@ -177,8 +177,13 @@ def _speeds(t, material, surface):
         speeds = np.atleast_1d(np.asarray(t["speeds"], dtype=float))
         return speeds, speeds * tau / surface.length, tau
     xi = t["xi"]
+    if isinstance(xi, list):
+        values = np.asarray(xi, dtype=float) if all(isinstance(x, (int, float)) for x in xi) else None
+        if values is None or values.size == 0 or not np.all(values > 0):
+            raise InputError(f"[loading] xi as a list must hold numbers > 0, got {xi!r}")
+        return values * surface.length / tau, values, tau
     if not isinstance(xi, dict) or set(xi) != {"start", "stop", "num"}:
-        raise InputError("[loading] xi must be a table {start, stop, num} (log-spaced)")
+        raise InputError("[loading] xi must be a table {start, stop, num} (log-spaced) or a list of values")
     if not (xi["start"] > 0 and xi["stop"] >= xi["start"] and int(xi["num"]) >= 1):
         raise InputError(f"[loading] xi needs 0 < start <= stop and num >= 1, got {xi}")
     values = np.logspace(np.log10(xi["start"]), np.log10(xi["stop"]), int(xi["num"]))
