@@ -176,3 +176,36 @@ def test_load_list_sweeps_loads(tmp_path):
     assert [c["load"] for c in rec["curves"]] == [0.2, 0.4]
     # more load, more contact at every speed
     assert all(b > a for a, b in zip(rec["curves"][0]["contact_fraction"], rec["curves"][1]["contact_fraction"]))
+
+
+def test_material_from_a_dma_table(tmp_path):
+    # a DMA master curve sampled from a known 3-term Prony series, fitted back by the scene
+    true = bem.Material.from_prony(E0=2e6, moduli=[3e6, 4e6, 1e6], times=[1e-1, 1e-3, 1e-5])
+    w = np.logspace(-2, 7, 60)
+    e = true.complex_modulus(w)
+    np.savetxt(tmp_path / "dma.csv", np.column_stack([w, e.real, e.imag]), delimiter=",",
+               header="w (rad/s), E' (Pa), E'' (Pa)")
+    text = BASE.replace("E0 = 3.3333333333333335e6\nE_inf = 1.0e7\ncreep_time = 0.01", 'dma = "dma.csv"')
+    s = scenes.parse(text, base=tmp_path)
+    fitted = s.material.complex_modulus(w)
+    # the true times lie on the fit's grid (2 per decade from 1/w_max = 1e-7 s to 1/w_min = 1e2 s),
+    # so the non-negative least squares recovers the series: measured misfit 4e-16
+    assert np.max(np.abs(fitted - e) / np.abs(e)) < 1e-9
+    assert s.material.E_inf == pytest.approx(true.E_inf, rel=1e-9)
+
+
+def test_built_in_scenes_load_by_name():
+    assert {"seed", "seed_figures"} <= set(scenes.builtin_scenes())
+    s = scenes.load("seed_figures")
+    assert len(s.realisations) == 8 and s.seeds == tuple(range(1, 9))
+    assert s.outputs["anisotropy"] and s.outputs["contact_psd"] and s.outputs["persson"]
+    assert 1.17e-2 in s.xi.tolist() and s.plot_xi == 1.17e-2
+
+
+def test_requested_plots_are_written(tmp_path):
+    text = BASE.replace("plots = false", "plots = true\nanisotropy = true\ncontact_psd = true\npersson = true")
+    text = text.replace("fields = false", "fields = true")
+    rec = run_scene(scenes.parse(text), tmp_path, progress=False)
+    for name in ["friction_curve.png", "contact_area.png", "pressure_map.png", "contact_map.png",
+                 "deformed_surface.png", "polar_m2.png", "contact_psd.png", "anisotropy.png"]:
+        assert name in rec["files"] and (tmp_path / name).stat().st_size > 1000, name
