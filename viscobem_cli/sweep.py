@@ -231,7 +231,6 @@ def execute(tasks, *, workers=1, scheduler=None, on_point, poll):
                 for f in done:
                     for rec in f.result():
                         on_point(rec)
-        except BaseException:
-            for f in pending:
-                f.cancel()
+        except BaseException:  # Ctrl-C or a failing chunk: drop queued chunks, keep what is on disk
+            pool.shutdown(wait=False, cancel_futures=True)
             raise
