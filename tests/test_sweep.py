@@ -209,3 +209,12 @@ def test_requested_plots_are_written(tmp_path):
     for name in ["friction_curve.png", "contact_area.png", "pressure_map.png", "contact_map.png",
                  "deformed_surface.png", "polar_m2.png", "contact_psd.png", "anisotropy.png"]:
         assert name in rec["files"] and (tmp_path / name).stat().st_size > 1000, name
+
+
+def test_command_line_workers_must_be_positive(tmp_path, capsys):
+    from viscobem_cli.main import main
+
+    path = tmp_path / "s.toml"
+    path.write_text(BASE)
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--workers", "0"]) == 2
+    assert "--workers" in capsys.readouterr().err
