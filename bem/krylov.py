@@ -1,8 +1,10 @@
 """Krylov solvers for the linear systems on the contact set (inner loop of the contact solver).
 
-Both take a matrix-free ``matvec``, a right-hand side ``b`` and stop when
+Both take a matrix-free ``matvec``, a right-hand side ``b``, an optional preconditioner
+``M`` (a callable approximating ``A^-1``; CG applies it on the left and needs it symmetric
+positive definite, GMRES on the right, so that both stop on the true residual) and stop when
 ``||b - A x||_2 <= atol`` or after ``maxiter`` products; they return
-``(x, residual_norm, matvecs)``. They start from ``x = 0``: the contact solver passes
+``(x, residual_norm, matvecs)`` (products with ``A``; the caller counts its own ``M``). They start from ``x = 0``: the contact solver passes
 corrections, so a warm start is already in its right-hand side.
 
 - :func:`cg` for the symmetric positive definite case (elastic or zero speed).
@@ -14,35 +16,38 @@ corrections, so a warm start is already in its right-hand side.
 import numpy as np
 
 
-def cg(matvec, b, *, atol, maxiter):
-    """Conjugate gradients for SPD ``matvec``; see module docstring."""
+def cg(matvec, b, *, atol, maxiter, M=None):
+    """(Preconditioned) conjugate gradients for SPD ``matvec``; see module docstring."""
     x = np.zeros_like(b)
     r = b.copy()
-    rr = float(r @ r)
-    if np.sqrt(rr) <= atol:
-        return x, np.sqrt(rr), 0
-    d = r.copy()
+    if np.linalg.norm(r) <= atol:
+        return x, float(np.linalg.norm(r)), 0
+    z = r if M is None else M(r)
+    rz = float(r @ z)
+    d = z.copy()
     k = 0
+    res = float(np.linalg.norm(r))
     while k < maxiter:
         ad = matvec(d)
         k += 1
         dad = float(d @ ad)
-        if dad <= 0:  # loss of positivity: stop with what we have
+        if dad <= 0 or rz <= 0:  # loss of positivity: stop with what we have
             break
-        alpha = rr / dad
+        alpha = rz / dad
         x += alpha * d
         r -= alpha * ad
-        rr_new = float(r @ r)
-        if np.sqrt(rr_new) <= atol:
-            rr = rr_new
+        res = float(np.linalg.norm(r))
+        if res <= atol:
             break
-        d *= rr_new / rr
-        d += r
-        rr = rr_new
-    return x, np.sqrt(rr), k
+        z = r if M is None else M(r)
+        rz_new = float(r @ z)
+        d *= rz_new / rz
+        d += z
+        rz = rz_new
+    return x, res, k
 
 
-def gmres(matvec, b, *, atol, maxiter, restart=None):
+def gmres(matvec, b, *, atol, maxiter, restart=None, M=None):
     """Restarted GMRES(``restart``) from ``x = 0``; see module docstring.
 
     The default restart length is long (up to 200) for small systems, where it matters for
@@ -67,7 +72,7 @@ def gmres(matvec, b, *, atol, maxiter, restart=None):
         g[0] = beta
         j_done = 0
         for j in range(m):
-            w = matvec(V[j])
+            w = matvec(V[j] if M is None else M(V[j]))
             k += 1
             for _ in range(2):  # CGS2
                 h = V[: j + 1] @ w
@@ -93,7 +98,7 @@ def gmres(matvec, b, *, atol, maxiter, restart=None):
             if abs(g[j + 1]) <= atol or k >= maxiter or H[j, j] == 0:
                 break
         y = np.linalg.solve(np.triu(H[:j_done, :j_done]), g[:j_done]) if j_done else np.zeros(0)
-        x += y @ V[:j_done]
+        x += y @ V[:j_done] if M is None else M(y @ V[:j_done])
         # Arnoldi: b - A x_new = r - V_{j+1} Hbar y, without another product
         coef = -(Hbar[: j_done + 1, :j_done] @ y)
         coef[0] += beta

@@ -90,14 +90,23 @@ class PeriodicHalfSpace:
 
         The exact inverse of :meth:`displacement` on zero-mean fields (full contact).
         """
-        with np.errstate(divide="ignore", invalid="ignore"):
-            inv = np.where(self.symbol != 0, 1.0 / np.where(self.symbol != 0, self.symbol, 1.0), 0.0)
-        return fft.inverse(fft.forward(displacement) * inv, self.shape)
+        return fft.inverse(fft.forward(displacement) * self._inverse_symbol(), self.shape)
+
+    def _inverse_symbol(self):
+        """``1 / a_q`` (0 for the mean mode), computed once."""
+        inv = self.__dict__.get("_inv")
+        if inv is None:
+            nonzero = self.symbol != 0
+            inv = np.zeros_like(self.symbol)
+            np.divide(1.0, self.symbol, out=inv, where=nonzero)
+            self._inv = inv
+        return inv
 
     def symmetric_part(self):
         """Operator with the symbol's real part: the symmetric part of this operator."""
         twin = object.__new__(PeriodicHalfSpace)
         twin.__dict__.update(self.__dict__)
+        twin.__dict__.pop("_inv", None)
         twin.symbol = np.real(self.symbol).copy()
         twin.is_symmetric = True
         return twin
