@@ -88,7 +88,7 @@ def _capital_phi(a):
     if np.any(big):
         s = a[big]
         k = np.arange(30)
-        psi[big] = np.log(np.abs(s)) + np.sum((-1.0) ** k * special.factorial(k) / s[:, None] ** (k + 1), axis=1)
+        psi[big] = np.log(np.abs(s)) + np.sum((-1.0) ** k * special.factorial(k) * (1.0 / s[:, None]) ** (k + 1), axis=1)
     large = ~small
     s = a[large]
     out[large] = psi[large] + g + s * (np.log(np.abs(s)) - 1.0 + g)
