@@ -29,6 +29,7 @@ from scipy.signal import lfilter
 __all__ = ["strip_elastic", "strip_creep", "square_elastic", "square_creep"]
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
+_GLAG_X, _GLAG_W = np.polynomial.laguerre.laggauss(10)  # nodes <= 30: inside 40 shift
 _FAR = 64.0  # beyond this many element sides the square uses its multipole expansion
 _CUT = 40.0  # exp(-40) ~ 4e-18: exponential weight beyond it is dropped
 
@@ -183,7 +184,7 @@ def square_creep(n, width, shift):
     half-element points ``m w / 2`` (where the kinks of ``G`` lie), each half element is
     integrated by Gauss–Legendre at the shifted off-grid points (graded toward the kinks on
     the row ``y = 0``, where ``G`` has a ``t ln t`` term, and in steps of ``L`` when
-    ``L < w / 2``), and the pieces are summed backward,
+    ``L < w / 2``; by Gauss–Laguerre when ``40 L < w / 2``), and the pieces are summed backward,
     ``I(s_m) = exp(-w/(2L)) I(s_{m+1}) + ∫_{s_m}^{s_{m+1}}``. Beyond the last point the
     tail is integrated over pieces growing geometrically to ``40 L``.
     """
@@ -191,7 +192,10 @@ def square_creep(n, width, shift):
     m = np.arange(-(2 * n - 1), 2 * n)
     s = m * h
     y = width * np.arange(n)
-    t, wt = _nodes(_pieces(h, shift), shift)
+    if _CUT * shift <= h:  # weight concentrated at the left end, F smooth there: Gauss–Laguerre
+        t, wt = shift * _GLAG_X, _GLAG_W
+    else:
+        t, wt = _nodes(_pieces(h, shift), shift)
     seg = np.empty((s.size - 1, n))
     chunk = max(1, 2**21 // (s.size * t.size))  # rows per block: bounded memory
     for j0 in range(0, n, chunk):

@@ -9,7 +9,10 @@ pressure; pressure outside the domain is zero. ``u`` is collocated at element ce
     u_i = sum_j K(x_i - x_j) p_j,
     K = (1 - nu**2) [G / E_inf + sum_k C_k ∫_0^inf exp(-z) G(. + v lambda_k z) dz],
 
-with ``G`` the influence coefficient of one element at ``E* = 1`` (:mod:`bem.influence`:
+(SPEC §5: creep terms with ``v lambda_k < 1e-6 d`` act as fully relaxed and join the elastic
+term; those with ``v lambda_k > 1e6 length`` add only a constant and are dropped; both
+errors are ``O(1e-6)`` relative), with ``G`` the influence coefficient of one element at
+``E* = 1`` (:mod:`bem.influence`:
 Love's uniformly loaded square on a 3-D half-space for 2-D surfaces, the plane-strain
 strip for 1-D profiles). For 2-D surfaces ``u`` is the absolute displacement (zero at
 infinity). For 1-D profiles plane strain defines ``u`` only up to a constant; here the
@@ -29,6 +32,7 @@ from . import influence
 __all__ = ["IsolatedHalfSpace"]
 
 WORKERS = -1
+_FOLD = 1e-6  # creep terms with v lambda < 1e-6 d (relaxed) or > 1e6 length (glassy) are folded
 
 
 def _embed(kernel, n, m_pad):
@@ -52,7 +56,12 @@ def _offset_kernels(shape, length, material, speed):
     d = length / n
     elastic = material.is_elastic or speed == 0.0
     comp_el = 1.0 / (material.E0 if elastic else material.E_inf)
-    terms = [] if elastic else list(zip(material.compliances, material.creep_times))
+    terms = []
+    for ck, lk in ([] if elastic else zip(material.compliances, material.creep_times)):
+        if speed * lk < _FOLD * d:  # fully relaxed over one element: C_k G (error O(v lambda / d))
+            comp_el += ck
+        elif speed * lk <= length / _FOLD:  # else glassy over the domain: a constant plus O(length / v lambda)
+            terms.append((ck, lk))
     m = np.arange(-(2 * n - 1), 2 * n)  # offsets m d / 2
     if len(shape) == 1:
         x = m * d / 2
