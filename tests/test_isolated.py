@@ -331,3 +331,36 @@ def test_bad_input():
         bem.solve(s, sls(), speed=1.0, load=1.0, periodic=True, method="uniform")
     with pytest.raises(InputError, match="unexpected keyword"):
         bem.solve(s, sls(), speed=1.0, load=1.0, periodic=False, levels=3)
+
+
+# ----------------------------------------------------------------------------- built-in scene
+def test_sphere_scene_runs_small(tmp_path):
+    """The built-in sphere scene (``viscobem run sphere``), shrunk to 24² and 3 speeds."""
+    import json
+
+    from viscobem_cli import scene as scenes
+    from viscobem_cli.study import run_scene
+
+    full = scenes.load("sphere")
+    assert full.surface.centered and not full.periodic and full.surface.shape == (128, 128)
+    text = (scenes.SCENE_DIR / "sphere.toml").read_text()
+    small = scenes.parse(text.replace("n = 128", "n = 24").replace("num = 16", "num = 3"), source="small")
+    record = run_scene(small, tmp_path, progress=False)
+    assert record["all_converged"] and record["solver"]["periodic"] is False
+    mu = record["friction_curve"]["friction"]
+    assert mu[1] > mu[0] > 0 and mu[1] > mu[2] > 0  # the bell: xi = 1e-3, 0.32, 100
+    for name in ("results.json", "fields.npz", "friction_curve.png", "pressure_maps.png", "contact_outlines.png"):
+        assert (tmp_path / name).stat().st_size > 0
+    assert json.loads((tmp_path / "results.json").read_text())["complete"]
+
+
+def test_scene_rejects_bad_indenter_settings():
+    from viscobem_cli import scene as scenes
+
+    text = (scenes.SCENE_DIR / "sphere.toml").read_text()
+    with pytest.raises(InputError, match="radius"):
+        scenes.parse(text.replace("radius = 0.01", ""), source="x")
+    with pytest.raises(InputError, match="method"):
+        scenes.parse(text.replace("periodic = false", 'periodic = false\nmethod = "active-set"'), source="x")
+    with pytest.raises(InputError, match="periodic"):
+        scenes.parse(text.replace("periodic = false", 'periodic = "no"'), source="x")
