@@ -205,10 +205,13 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     if not periodic and method == "auto":
         method = _choose_isolated_method(surface, material, speed=speed, load=load, rtol=rtol)
     if method == "adaptive":
+        if load is None:
+            raise InputError("approach (displacement control) is not available with method='adaptive'; "
+                             "give load (N, or N/m for profiles)")
         from .adaptive import solve_adaptive
 
-        return solve_adaptive(surface, material, speed=speed, load=load, approach=approach, rtol=rtol,
-                              maxiter=maxiter, raise_on_failure=raise_on_failure, **adaptive_options)
+        return solve_adaptive(surface, material, speed=speed, load=load, rtol=rtol, maxiter=maxiter,
+                              raise_on_failure=raise_on_failure, **adaptive_options)
     maxiter = check_int("maxiter", maxiter, 1)
     if initial is not None:
         initial = check_array("initial", initial)
