@@ -32,7 +32,9 @@ Influence coefficients (collocation at element centres, per unit pressure, m/Pa)
   is the sum over its cells (superposition, exact), taken from summed-area tables.
 - 1-D, ``G = (2 (1 - nu**2) / pi) ln(l_ref / |x|)`` with ``l_ref`` the domain length (the
   displacement of a line load is defined up to a constant times the load; ``l_ref`` fixes
-  it, so the approach of a profile is relative to it). Closed forms: with
+  it, so the approach of a profile is relative to it; creep term ``k`` uses
+  ``l_ref + v lambda_k`` so that its kernel stays positive when ``v lambda_k >> l_ref``).
+  Closed forms: with
   ``G0(a) = a ln(|a|/l_ref) - a`` the strip ``[x1, x2]`` gives ``-(G0(x2 - x) - G0(x1 - x))``;
   the creep term replaces ``G0(a)`` by ``G0(a) + L D(a/L)``,
   ``D(t) = exp(-t) Ei(t) - ln|t| - gamma`` (an ``a``-independent constant dropped), evaluated
@@ -325,8 +327,9 @@ def _block_sums(table, n, mesh, rows):
     return out
 
 
-def _matrices_2d(mesh, material, speed, chunk=512):
-    """Influence and x-slope matrices (m/Pa and 1/Pa) of a square-element mesh."""
+def _matrices_2d(mesh, material, speed, with_slope=True, chunk=512):
+    """Influence and x-slope matrices (m/Pa and 1/Pa; slope None unless ``with_slope``) of a
+    square-element mesh."""
     n, h = mesh.n, mesh.spacing
     lattice = 0.5 * h * np.arange(-2 * n, 2 * n + 1)
     love = _cached(("love", n, h), lambda: _love_corner(lattice[:, None], lattice[None, :]))
@@ -336,22 +339,29 @@ def _matrices_2d(mesh, material, speed, chunk=512):
     tables = {k: _cached(("creep", n, h, L), lambda L=L: cell_creep_table(n, h, L))
               for k, L in enumerate(shifts) if L >= 1e-4 * h}
     ne = len(mesh)
-    K, S = np.empty((ne, ne)), np.empty((ne, ne))
+    K = np.empty((ne, ne))
+    S = np.empty((ne, ne)) if with_slope else None
+    small = any(k not in tables for k in range(shifts.size))
     for r0 in range(0, ne, chunk):
         rows = np.arange(r0, min(ne, r0 + chunk))
         g = _corner_sums(love, n, mesh, rows)  # int int 1/r over the element (m)
-        slope = -_corner_sums(love_dx, n, mesh, rows)  # its x-derivative at the point
+        # x-derivative of g at the point
+        slope = -_corner_sums(love_dx, n, mesh, rows) if with_slope or small else None
         Kr = g / material.E_inf
-        Sr = slope / material.E_inf
+        Sr = slope / material.E_inf if with_slope else None
         for k, (Ck, L) in enumerate(zip(material.compliances, shifts)):
             if k in tables:
                 creep = _block_sums(tables[k], n, mesh, rows)
                 Kr += Ck * creep
-                Sr += Ck * (creep - g) / L
+                if with_slope:
+                    Sr += Ck * (creep - g) / L
             else:  # shift below 1e-4 cells: first order in L (error ~ (L/h)**2)
                 Kr += Ck * (g + L * slope)
-                Sr += Ck * slope
-        K[rows], S[rows] = factor * Kr, factor * Sr
+                if with_slope:
+                    Sr += Ck * slope
+        K[rows] = factor * Kr
+        if with_slope:
+            S[rows] = factor * Sr
     return K, S
 
 
@@ -409,19 +419,22 @@ def _matrices_1d(mesh, material, speed):
             K, S = K + Ck * elastic, S + Ck * slope
             continue
         d2, d1 = _d_creep(a2 / L), _d_creep(a1 / L)
-        K = K + Ck * (elastic - L * (d2 - d1))
+        # reference length l_ref + L for this term (adds width * ln(1 + L/l_ref), a constant
+        # times the load): keeps the kernel ~ ln((l_ref + L)/L) + gamma > 0 when L >> l_ref
+        K = K + Ck * (elastic - L * (d2 - d1) + (a2 - a1) * np.log1p(L / ell))
         S = S - Ck * (d2 - d1)  # exact: G0'(a) + D'(a/L) = ln(L/l_ref) - gamma - D(a/L)
     factor = 2.0 * material.plane_strain_factor / np.pi
     return factor * K, factor * S
 
 
-def influence_matrix(mesh, material, speed):
+def influence_matrix(mesh, material, speed, with_slope=True):
     """Dense influence matrix ``K`` (m/Pa) and slope matrix ``S`` (1/Pa) of ``mesh``:
     ``u_i = sum_j K_ij p_j`` and ``du/dx (x_i) = sum_j S_ij p_j`` at the element centres
-    (see the module docstring), for the material sliding at ``speed`` (m/s)."""
+    (see the module docstring), for the material sliding at ``speed`` (m/s). ``S`` is
+    ``None`` unless ``with_slope`` (2-D; it is cheap in 1-D and always returned)."""
     if mesh.ndim == 1:
         return _matrices_1d(mesh, material, speed)
-    return _matrices_2d(mesh, material, speed)
+    return _matrices_2d(mesh, material, speed, with_slope)
 
 
 # ------------------------------------------------------------------------------ contact
@@ -473,8 +486,11 @@ def _winkler_start(heights, stiffness, load):
     def total(d):
         return float(np.sum(stiffness * np.maximum(ht + d, 0.0)))
 
+    stiffness = np.abs(stiffness)
     lo, hi = 0.0, max(float(np.ptp(ht)), 1e-300)
-    while total(hi) < load:
+    for _ in range(2000):
+        if total(hi) >= load:
+            break
         hi *= 2
     for _ in range(200):
         mid = 0.5 * (lo + hi)
@@ -524,9 +540,9 @@ def _indenter(surface, height, sampling):
     return lambda mesh: (_element_values(mesh, h, sampling), _element_values(mesh, dh, sampling))
 
 
-def _solve_level(mesh, material, speed, load, heights, initial, rtol, maxiter):
-    """One contact solve on ``mesh``; returns (forces, solution, K, S)."""
-    K, S = influence_matrix(mesh, material, speed)
+def _solve_level(mesh, material, speed, load, heights, initial, rtol, maxiter, with_slope):
+    """One contact solve on ``mesh``; returns (solution in forces, K, S)."""
+    K, S = influence_matrix(mesh, material, speed, with_slope)
     areas = mesh.areas()
     op = _ForceOperator(K, areas, _phase_symbol(material, speed, mesh))
     if initial is None:
@@ -574,7 +590,8 @@ def _run(surface, material, speed, load, rtol, levels, buffer, gradient, refine_
             raise InputError(f"max_elements: level {level} needs {len(mesh)} elements > max_elements = "
                              f"{max_elements}; use fewer levels, a coarser surface or a larger limit")
         hts, slopes = indenter(mesh)
-        sol, K, S = _solve_level(mesh, material, speed, load, hts, initial, rtol, maxiter)
+        sol, K, S = _solve_level(mesh, material, speed, load, hts, initial, rtol, maxiter,
+                                 with_slope=level == levels)
         iterations, matvecs = iterations + sol.iterations, matvecs + sol.matvecs
         meshes.append(mesh)
         log.info("adaptive level %d: %d elements, %s", level, len(mesh), sol.message)
@@ -668,6 +685,8 @@ def solve_adaptive(surface, material, *, speed, load, rtol=1e-8, levels=3, buffe
     areas = mesh.areas()
     p = f / areas
     total = float(f.sum())
+    if S is None:  # a coarser level failed: its slope matrix was not built
+        S = influence_matrix(mesh, material, speed)[1]
     slope_u = S @ p
     friction = float(-np.dot(f, slope_u) / total)
     friction_eq6 = float(-np.dot(f, slopes) / total)
