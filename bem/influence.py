@@ -26,7 +26,7 @@ import numpy as np
 from scipy import special
 from scipy.signal import lfilter
 
-__all__ = ["strip_elastic", "strip_creep", "square_elastic", "square_creep"]
+__all__ = ["strip_elastic", "strip_creep", "square_elastic", "square_creep", "square_creep_sum"]
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 _GLAG_X, _GLAG_W = np.polynomial.laguerre.laggauss(10)  # nodes <= 30: inside 40 shift
@@ -188,36 +188,66 @@ def square_creep(n, width, shift):
     ``I(s_m) = exp(-w/(2L)) I(s_{m+1}) + ∫_{s_m}^{s_{m+1}}``. Beyond the last point the
     tail is integrated over pieces growing geometrically to ``40 L``.
     """
+    return square_creep_sum(n, width, [shift], [1.0])
+
+
+def _half_element_nodes(h, shift):
+    """Nodes and weights of one half element ``[0, h]`` for the weight ``exp(-t/L)/L``."""
+    if _CUT * shift <= h:  # weight concentrated at the left end, G smooth there: Gauss–Laguerre
+        return shift * _GLAG_X, _GLAG_W
+    return _nodes(_pieces(h, shift), shift)
+
+
+def _sweep(seg, s, yy, width, shift, first_row):
+    """Kink correction (row y = 0), tail and backward recurrence for one block of rows."""
     h = width / 2
-    m = np.arange(-(2 * n - 1), 2 * n)
-    s = m * h
-    y = width * np.arange(n)
-    if _CUT * shift <= h:  # weight concentrated at the left end, F smooth there: Gauss–Laguerre
-        t, wt = shift * _GLAG_X, _GLAG_W
-    else:
-        t, wt = _nodes(_pieces(h, shift), shift)
-    seg = np.empty((s.size - 1, n))
-    chunk = max(1, 2**21 // (s.size * t.size))  # rows per block: bounded memory
-    for j0 in range(0, n, chunk):
-        yy = y[j0:j0 + chunk]
-        vals = square_elastic(s[:-1, None, None] + t[None, :, None], yy[None, None, :], width)
-        seg[:, j0:j0 + yy.size] = np.einsum("mtj,t->mj", vals, wt)
-    # row y = 0: the half elements touching the kinks at x = ±w/2 get graded quadrature
-    for kink in (-1, 1):
-        i = int(np.flatnonzero(m == kink)[0])
-        for cell, left in ((i - 1, False), (i, True)):
-            tg, wg = _nodes(_pieces(h, shift, grade_left=left, grade_right=not left), shift)
-            seg[cell, 0] = np.dot(square_elastic(s[cell] + tg, 0.0, width), wg)
+    if first_row:  # the half elements touching the kinks at x = ±w/2 get graded quadrature
+        for kink in (-1, 1):
+            i = int(np.flatnonzero(np.isclose(s, kink * h, rtol=0, atol=1e-9 * h))[0])
+            for cell, left in ((i - 1, False), (i, True)):
+                tg, wg = _nodes(_pieces(h, shift, grade_left=left, grade_right=not left), shift)
+                seg[cell, 0] = np.dot(square_elastic(s[cell] + tg, 0.0, width), wg)
     # tail beyond the last point: pieces doubling in width up to 40 L
     top = max(_CUT * shift, h)
     grow = h * 2.0 ** np.arange(int(np.ceil(np.log2(top / h))) + 1)
     edges = np.unique(np.concatenate([[0.0, top], grow[grow < top], _pieces(h, shift)]))
     tt, wtt = _nodes(edges, shift)
-    tail = square_elastic(s[-1] + tt[:, None], y[None, :], width).T @ wtt
+    tail = square_elastic(s[-1] + tt[:, None], yy[None, :], width).T @ wtt
     # backward recurrence I_m = r I_{m+1} + seg_m as a first-order filter on the reversed rows
     r = np.exp(-h / shift)
-    rev = seg[::-1]
-    out = np.empty((s.size, n))
+    out = np.empty((s.size, yy.size))
     out[-1] = tail
-    out[-2::-1] = lfilter([1.0], [1.0, -r], rev, axis=0, zi=(r * tail)[None, :])[0]
+    out[-2::-1] = lfilter([1.0], [1.0, -r], seg[::-1], axis=0, zi=(r * tail)[None, :])[0]
+    return out
+
+
+def square_creep_sum(n, width, shifts, weights):
+    """``sum_k weights[k] * square_creep(n, width, shifts[k])``, sharing the work of all terms
+    with ``shift >= width / 2`` (their Gauss–Legendre nodes coincide; only the weights differ).
+
+    Same offsets and shape as :func:`square_creep`; ``weights`` in any unit (e.g. the creep
+    compliances ``C_k``, 1/Pa).
+    """
+    h = width / 2
+    s = np.arange(-(2 * n - 1), 2 * n) * h
+    y = width * np.arange(n)
+    shifts = np.asarray(shifts, dtype=float)
+    weights = np.asarray(weights, dtype=float)
+    shared = shifts >= h
+    t_sh = _nodes(np.array([0.0, h]), h)[0]
+    w_sh = [_nodes(np.array([0.0, h]), L)[1] for L in shifts[shared]]
+    own = [(L, c, *_half_element_nodes(h, L)) for L, c in zip(shifts[~shared], weights[~shared])]
+    out = np.zeros((s.size, n))
+    most = max([t_sh.size] + [o[2].size for o in own])
+    chunk = max(1, 2**21 // (s.size * most))  # rows per block: bounded memory
+    for j0 in range(0, n, chunk):
+        yy = y[j0:j0 + chunk]
+        rows = slice(j0, j0 + yy.size)
+        if w_sh:
+            vals = square_elastic(s[:-1, None, None] + t_sh[None, :, None], yy[None, None, :], width)
+            for L, c, wt in zip(shifts[shared], weights[shared], w_sh):
+                out[:, rows] += c * _sweep(np.einsum("mtj,t->mj", vals, wt), s, yy, width, L, j0 == 0)
+        for L, c, t, wt in own:
+            vals = square_elastic(s[:-1, None, None] + t[None, :, None], yy[None, None, :], width)
+            out[:, rows] += c * _sweep(np.einsum("mtj,t->mj", vals, wt), s, yy, width, L, j0 == 0)
     return out

@@ -71,8 +71,9 @@ def _offset_kernels(shape, length, material, speed):
     else:
         y = d * np.arange(n)
         half = comp_el * influence.square_elastic(m[:, None] * d / 2, y[None, :], d)
-        for ck, lk in terms:
-            half = half + ck * influence.square_creep(n, d, speed * lk)
+        if terms:
+            ck, lk = np.array(terms).T
+            half = half + influence.square_creep_sum(n, d, speed * lk, ck)
         half = np.concatenate([half[:, :0:-1], half], axis=1)  # mirror y >= 0 to y < 0
     half = half * material.plane_strain_factor
     centres = half[1:-1:2]

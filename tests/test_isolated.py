@@ -71,6 +71,13 @@ def test_square_creep_kernel_against_brute_force_quadrature(shift):
         assert table[m == mi, j][0] == pytest.approx(ref, rel=1e-9)
 
 
+def test_square_creep_sum_shares_work_exactly():
+    shifts, weights = [0.004, 0.3, 2.0, 50.0], [1.0, 2.0, 3.0, 4.0]
+    total = influence.square_creep_sum(10, 1.0, shifts, weights)
+    single = sum(c * influence.square_creep(10, 1.0, s) for s, c in zip(shifts, weights))
+    assert np.allclose(total, single, rtol=1e-13, atol=0)  # same arithmetic, summed in another order
+
+
 @pytest.mark.parametrize("shift", [1e-4, 0.2, 13.0, 1e3])
 def test_strip_creep_kernel_against_brute_force_quadrature(shift):
     w, ell = 1.0, 37.0
