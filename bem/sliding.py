@@ -60,7 +60,7 @@ class SlidingResult:
         surface on periodic cells, to the undeformed surface far away for isolated 2-D
         contacts, and with the displacement's constant for isolated profiles.
     contact_fraction : float
-        Fraction of the cell in contact (``pressure > 0``).
+        Fraction of the cell (isolated contacts: of the domain) in contact (``pressure > 0``).
     friction, friction_eq6 : float
         Viscoelastic friction coefficient, dissipation form and eq. 6 (see module doc).
     dissipated_power : float
