@@ -24,6 +24,7 @@ quadrature along ``x`` at the shifted (off-grid) points, see :func:`square_creep
 """
 import numpy as np
 from scipy import special
+from scipy.linalg import eigh_tridiagonal
 from scipy.signal import lfilter
 
 __all__ = ["strip_elastic", "strip_creep", "square_elastic", "square_creep", "square_creep_sum"]
@@ -184,18 +185,39 @@ def square_creep(n, width, shift):
     half-element points ``m w / 2`` (where the kinks of ``G`` lie), each half element is
     integrated by Gauss–Legendre at the shifted off-grid points (graded toward the kinks on
     the row ``y = 0``, where ``G`` has a ``t ln t`` term, and in steps of ``L`` when
-    ``L < w / 2``; by Gauss–Laguerre when ``40 L < w / 2``), and the pieces are summed backward,
+    ``L < w / 2``, condensed to a 10-point Gauss rule of that weight; by Gauss–Laguerre when
+    ``40 L < w / 2``), and the pieces are summed backward,
     ``I(s_m) = exp(-w/(2L)) I(s_{m+1}) + ∫_{s_m}^{s_{m+1}}``. Beyond the last point the
     tail is integrated over pieces growing geometrically to ``40 L``.
     """
     return square_creep_sum(n, width, [shift], [1.0])
 
 
+def _gauss_rule(t, w, k=10):
+    """``k``-point Gauss rule of the discrete measure ``(t, w)`` (Lanczos / discretized
+    Stieltjes, then Golub–Welsch): exact for polynomials of degree ``< 2k`` under that measure."""
+    scale = t.max()
+    x = t / scale
+    alpha, beta = np.zeros(k), np.zeros(k)
+    q_prev = np.zeros_like(x)
+    q = np.full_like(x, 1.0 / np.sqrt(w.sum()))
+    for i in range(k):
+        z = x * q
+        alpha[i] = np.dot(w, z * q)
+        z = z - alpha[i] * q - (beta[i - 1] * q_prev if i else 0.0)
+        if i + 1 < k:
+            beta[i] = np.sqrt(np.dot(w, z * z))
+            q_prev, q = q, z / beta[i]
+    nodes, vecs = eigh_tridiagonal(alpha, beta[:-1])
+    return nodes * scale, w.sum() * vecs[0] ** 2
+
+
 def _half_element_nodes(h, shift):
     """Nodes and weights of one half element ``[0, h]`` for the weight ``exp(-t/L)/L``."""
     if _CUT * shift <= h:  # weight concentrated at the left end, G smooth there: Gauss–Laguerre
         return shift * _GLAG_X, _GLAG_W
-    return _nodes(_pieces(h, shift), shift)
+    # a 10-point Gauss rule of the truncated exponential weight, from its graded discretisation
+    return _gauss_rule(*_nodes(_pieces(h, shift), shift))
 
 
 def _sweep(seg, s, yy, width, shift, first_row):
