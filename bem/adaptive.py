@@ -222,12 +222,12 @@ def _panel_rule(edges):
     return (0.5 * (b - a) * (x + 1) + a).ravel(), (0.5 * (b - a) * w).ravel()
 
 
-def _weight_rule(lo, hi, shift, scale, extra=()):
+def _weight_rule(lo, hi, shift, scale=None, extra=()):
     """Nodes ``r`` in ``[lo, hi]`` and weights of ``exp(-r/shift)/shift dr``, panels graded
     geometrically toward ``lo`` at the rate of the weight (``shift``) and of the integrand
     (``scale``, the distance to the nearest singularity), plus ``extra`` panel edges."""
     pts = [lo, hi, *extra]
-    for base in (shift, scale):
+    for base in (shift,) if scale is None else (shift, scale):
         g = lo + base * 2.0 ** np.arange(-4, 60)
         pts.extend(g[g < hi])
     edges = np.unique(np.clip(pts, lo, min(hi, lo + _CUT * shift)))
@@ -248,14 +248,23 @@ def cell_creep_table(n, h, shift):
     table[-1] = np.sum(w[:, None] * _cell_influence(X[-1] + r[:, None], Y[None, :], h), axis=0)
     # one interval of width dX: plain panels, and panels graded toward both ends for the
     # intervals that touch a cell edge on rows |Y| <= h/2 (log-singular slope there)
-    r, w = _weight_rule(0.0, dX, shift, dX)
+    r, w = _weight_rule(0.0, dX, shift, None)  # the cell is >= dX away: smooth on scale dX
     ends = np.array([2**-12, 2**-9, 2**-6, 2**-4, 2**-2])
     rs, ws = _weight_rule(0.0, dX, shift, dX, extra=dX * np.concatenate([ends, 1 - ends]))
     decay = np.exp(-dX / shift)
     near = Y <= dX * (1 + 1e-12)
     parts = np.empty((X.size - 1, Y.size))
+    # The cell's corners sit on the lattice (h/2 = dX), and F is odd in each argument, so
+    # g(X_i + r, Y_b) = F(X_{i-1}+r, Y_{b-1}) - F(X_{i+1}+r, Y_{b-1}) - F(X_{i-1}+r, Y_{b+1})
+    # + F(X_{i+1}+r, Y_{b+1}): one evaluation of F per lattice point and node, not four.
+    Yx = dX * np.arange(-1, 2 * n + 2)  # Y_{b-1} .. Y_{b+1}
+    for i0 in range(0, X.size - 1, 128):
+        i1 = min(i0 + 128, X.size - 1)
+        Xj = dX * (np.arange(i0 - 1, i1 + 1) - 2 * n)  # X_{i-1} .. X_{i+1}
+        phi = _love_corner(Xj[:, None, None] + r[None, :, None], Yx[None, None, :])
+        g = phi[:-2, :, :-2] - phi[2:, :, :-2] - phi[:-2, :, 2:] + phi[2:, :, 2:]
+        parts[i0:i1] = np.einsum("k,ikb->ib", w, g)
     for i in range(X.size - 1):
-        parts[i] = np.sum(w[:, None] * _cell_influence(X[i] + r[:, None], Y[None, :], h), axis=0)
         if abs(abs(X[i]) - dX) < 1e-9 * h or abs(abs(X[i + 1]) - dX) < 1e-9 * h:
             parts[i, near] = np.sum(ws[:, None] * _cell_influence(X[i] + rs[:, None], Y[None, near], h),
                                     axis=0)
