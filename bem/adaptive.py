@@ -470,6 +470,10 @@ class _ForceOperator:
         twin.is_symmetric = True
         return twin
 
+    def initial_pressure(self, ht, *, mean_pressure, approach=None):
+        """First iterate for :mod:`bem.contact` (load control): Winkler forces."""
+        return _winkler_start(ht, 1.0 / np.diag(self.matrix), mean_pressure * self.shape[0])
+
     def pressure_from_displacement(self, u):
         """Zero-sum forces whose displacement is ``u`` up to a constant (full contact)."""
         n = self.shape[0]
@@ -554,8 +558,8 @@ def _solve_level(mesh, material, speed, load, heights, initial, rtol, maxiter, w
     K, S = influence_matrix(mesh, material, speed, with_slope)
     areas = mesh.areas()
     op = _ForceOperator(K, areas, _phase_symbol(material, speed, mesh))
-    if initial is None:
-        initial = _winkler_start(heights, 1.0 / np.diag(op.matrix), load)
+    # initial None on the coarsest level: the contact solver starts strongly non-symmetric
+    # problems from its symmetric part's contact, others from op.initial_pressure
     sol = solve_contact(op, heights, mean_pressure=load / len(mesh), rtol=rtol, maxiter=maxiter,
                         initial=initial, raise_on_failure=False)
     return sol, K, S

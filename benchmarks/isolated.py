@@ -38,7 +38,7 @@ import time
 
 import numpy as np
 
-from benchmarks._measure import load_average, peak_rss, run_in_fresh_process, thread_environment
+from benchmarks._measure import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
 
 RADIUS = 0.01
 LOADS = {"cylinder": 1000.0, "sphere": 1.0, "sphere-wide": 1.0}
@@ -175,14 +175,20 @@ def run(quick: bool = True, out_dir=".") -> dict:
     env = thread_environment(1)
     m = _material()
     rows = []
-    for problem in SPEEDS:
-        uni, ada = _sizes(problem, quick)
-        for factor in SPEEDS[problem]:
-            for n in uni:
-                rows.append(run_in_fresh_process(_case, problem, factor, "uniform", n, 0, env=env))
-            for n, levels in ada:
-                rows.append(run_in_fresh_process(_case, problem, factor, "adaptive", n, levels, env=env))
-            print(f"  {problem} f={factor}: {len(uni) + len(ada)} cases done", flush=True)
+    import tempfile
+
+    import bem
+
+    # every case measures the same frozen copy of bem/, even if the tree is edited meanwhile
+    with tempfile.TemporaryDirectory() as tmp, source_snapshot(bem, tmp) as snapshot:
+        for problem in SPEEDS:
+            uni, ada = _sizes(problem, quick)
+            for factor in SPEEDS[problem]:
+                for n in uni:
+                    rows.append(run_in_fresh_process(_case, problem, factor, "uniform", n, 0, env=env))
+                for n, levels in ada:
+                    rows.append(run_in_fresh_process(_case, problem, factor, "adaptive", n, levels, env=env))
+                print(f"  {problem} f={factor}: {len(uni) + len(ada)} cases done", flush=True)
 
     from validation.hunter import rolling_cylinder
 
@@ -249,7 +255,7 @@ def run(quick: bool = True, out_dir=".") -> dict:
     head = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True,
                           cwd=pathlib.Path(__file__).parent).stdout.strip() or None
     result = {"quick": quick, "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-              "git_head": head, "machine": {"platform": platform.platform(), "cpus": os.cpu_count(),
+              "git_head": head, "bem_snapshot": snapshot, "machine": {"platform": platform.platform(), "cpus": os.cpu_count(),
                                             "load_average_1min": load_average()},
               "material": {"E0": m.E0, "E_inf": m.E_inf, "creep_time": float(m.creep_times[0]), "nu": m.nu},
               "radius": RADIUS, "loads": LOADS, "domain_over_a0": DOMAIN, "speed_factors": SPEEDS,
