@@ -11,8 +11,9 @@ and ``a0`` the relaxed (E0) Hertz half-width / radius:
   the observed order is fitted from the three and recorded; if it falls outside [0.5, 4]
   or the three are not monotone, the finest grid's value is used instead). No exact
   solution exists.
-- ``sphere-wide``: the same sphere at ``f = 1`` on a domain (12 a0)^2, the case a user who
-  does not know the contact size meets, and the one that favours coarse far elements.
+- ``sphere-wide``, ``sphere-xwide``: the same sphere at ``f = 1`` on domains (12 a0)^2 and
+  (24 a0)^2, the case a user who does not know the contact size meets, and the one that
+  favours coarse far elements.
 
 Solvers: ``bem.solve(..., periodic=False, method="uniform")`` over a range of grids, and
 ``bem.adaptive.solve_adaptive`` over fine grids and refinement levels (coarse mesh of 32
@@ -41,10 +42,10 @@ import numpy as np
 from benchmarks._measure import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
 
 RADIUS = 0.01
-LOADS = {"cylinder": 1000.0, "sphere": 1.0, "sphere-wide": 1.0}
-SPEEDS = {"cylinder": (0.3, 1.0, 5.0), "sphere": (0.3, 1.0, 5.0), "sphere-wide": (1.0,)}
+LOADS = {"cylinder": 1000.0, "sphere": 1.0, "sphere-wide": 1.0, "sphere-xwide": 1.0}
+SPEEDS = {"cylinder": (0.3, 1.0, 5.0), "sphere": (0.3, 1.0, 5.0), "sphere-wide": (1.0,), "sphere-xwide": (1.0,)}
 # domain side in relaxed Hertz half-widths (cylinder) / radii (sphere)
-DOMAIN = {"cylinder": 3.0, "sphere": 3.0, "sphere-wide": 12.0}
+DOMAIN = {"cylinder": 3.0, "sphere": 3.0, "sphere-wide": 12.0, "sphere-xwide": 24.0}
 TOLERANCES = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5)
 
 
@@ -97,6 +98,10 @@ def _sizes(problem, quick):
     if problem == "sphere-wide":  # contact ~1/6 of the domain side: room for coarse elements
         uni = [64, 128, 256] if quick else [64, 128, 192, 256, 384, 512]
         ada = [(64, 3), (128, 4)] if quick else [(64, 3), (128, 4), (192, 4), (256, 5)]
+        return uni, ada
+    if problem == "sphere-xwide":  # contact ~1/12 of the domain side
+        uni = [128, 256, 512] if quick else [128, 256, 384, 512, 768]
+        ada = [(128, 4), (256, 5)] if quick else [(128, 4), (256, 5), (384, 5), (512, 6)]
         return uni, ada
     uni = [32, 64, 128] if quick else [32, 48, 64, 96, 128, 192, 256, 512]
     ada = [(32, 2), (64, 3)] if quick else [(32, 2), (48, 2), (64, 3), (96, 3)]
@@ -168,8 +173,11 @@ def _plot(groups, path):
     plt.close(fig)
 
 
-def run(quick: bool = True, out_dir=".") -> dict:
-    """Run the benchmark; print tables and write JSON + PNG into ``out_dir``."""
+def run(quick: bool = True, out_dir=".", only=None) -> dict:
+    """Run the benchmark; print tables and write JSON + PNG into ``out_dir``.
+
+    ``only``: a list of problem names (keys of ``SPEEDS``) to run instead of all."""
+    problems = list(SPEEDS) if not only else [p for p in SPEEDS if p in only]
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     env = thread_environment(1)
@@ -181,7 +189,7 @@ def run(quick: bool = True, out_dir=".") -> dict:
 
     # every case measures the same frozen copy of bem/, even if the tree is edited meanwhile
     with tempfile.TemporaryDirectory() as tmp, source_snapshot(bem, tmp) as snapshot:
-        for problem in SPEEDS:
+        for problem in problems:
             uni, ada = _sizes(problem, quick)
             for factor in SPEEDS[problem]:
                 for n in uni:
@@ -193,7 +201,7 @@ def run(quick: bool = True, out_dir=".") -> dict:
     from validation.hunter import rolling_cylinder
 
     references, groups = {}, {}
-    for problem in SPEEDS:
+    for problem in problems:
         for factor in SPEEDS[problem]:
             key = f"{problem} V lambda/a0 = {factor:g}"
             sel = [r for r in rows if r["problem"] == problem and r["speed_factor"] == factor]
@@ -270,8 +278,9 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     parser.add_argument("--out", default="bench-out", help="output folder")
+    parser.add_argument("--only", nargs="+", choices=list(SPEEDS), help="run only these problems")
     args = parser.parse_args(argv)
-    run(quick=args.quick, out_dir=args.out)
+    run(quick=args.quick, out_dir=args.out, only=args.only)
 
 
 if __name__ == "__main__":
