@@ -147,8 +147,20 @@ _PERIODIC_METHODS = ("auto", "active-set")
 def _choose_isolated_method(surface, material, *, speed, load, rtol):
     """The isolated-contact method that ``method="auto"`` selects: ``"uniform"`` or ``"adaptive"``.
 
-    For now always the uniform DC-FFT grid; to be decided from the run-time-against-error
-    benchmark of the two (``benchmarks/isolated.py``).
+    Always the uniform DC-FFT grid, the faster one in ``benchmarks/isolated.py`` (tables:
+    ``benchmarks/results/isolated_benchmark.json`` and ``..._xwide.json``, run 2026-11-21 on
+    2 shared cores, load 6-8, at commit 6770fdd with bem/ frozen; figures
+    ``isolated_pareto*.png``). Problems: rolling cylinder vs Hunter and sliding sphere vs a
+    Richardson-extrapolated reference, each at ``V lambda / a0 = 0.3, 1, 5``, plus the sphere
+    on domains 12 and 24 contact radii wide; error = max of the friction and peak-pressure
+    errors. At equal fine grid the two reach the same peak-pressure error (the same
+    collocation inside the contact) and the uniform grid is faster on every problem and grid
+    (cylinder 2-370x, sphere 3-27x, wide domains 1.0-6.6x). At equal error the uniform grid
+    is faster in 62 of the 65 (problem, tolerance 1e-1..1e-5) cells reached; the three others
+    (wide sphere domains at 1e-2, 3e-4, 1e-3) are within timing noise or come from the
+    adaptive solver's friction evaluation (its slope-matrix dissipation form converges
+    faster), not from its mesh. Nothing here depends on ``speed``, ``load``, ``rtol`` or the
+    material; the arguments are kept for a future rule.
     """
     return "uniform"
 

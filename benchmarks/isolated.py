@@ -114,15 +114,15 @@ def _richardson(rows, key):
     ns = sorted(by_n)
     trip = [n for n in ns if n * 2 in by_n and n * 4 in by_n]
     if not trip:
-        return by_n[ns[-1]], None
+        return by_n[ns[-1]], None, [ns[-1]]
     n = trip[-1]
     f1, f2, f3 = by_n[n], by_n[2 * n], by_n[4 * n]
     if (f1 - f2) * (f2 - f3) <= 0 or f2 == f3:
-        return f3, None
+        return f3, None, [n, 2 * n, 4 * n]
     p = float(np.log2((f1 - f2) / (f2 - f3)))
     if not 0.5 <= p <= 4:
-        return f3, p
-    return f3 - (f2 - f3) / (2**p - 1), p
+        return f3, p, [n, 2 * n, 4 * n]
+    return f3 - (f2 - f3) / (2**p - 1), p, [n, 2 * n, 4 * n]
 
 
 def _pareto(points):
@@ -211,11 +211,11 @@ def run(quick: bool = True, out_dir=".", only=None) -> dict:
                 ref = {"kind": "Hunter (exact)", "friction": ex.friction, "peak_pressure": ex.peak_pressure}
             else:
                 uni = [r for r in sel if r["method"] == "uniform"]
-                mu, p_mu = _richardson(uni, "friction")
-                pk, p_pk = _richardson(uni, "peak_pressure")
+                mu, p_mu, grids = _richardson(uni, "friction")
+                pk, p_pk, _ = _richardson(uni, "peak_pressure")
+                # order None: not monotone, the finest grid's value is the reference
                 ref = {"kind": "Richardson extrapolation of the uniform grids", "friction": mu,
-                       "peak_pressure": pk, "order_friction": p_mu, "order_peak": p_pk,
-                       "grids": sorted(r["n"] for r in uni)[-3:]}
+                       "peak_pressure": pk, "order_friction": p_mu, "order_peak": p_pk, "grids": grids}
             for r in sel:
                 r["friction_error"] = abs(r["friction"] / ref["friction"] - 1)
                 r["peak_error"] = abs(r["peak_pressure"] / ref["peak_pressure"] - 1)

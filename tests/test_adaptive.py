@@ -72,6 +72,8 @@ def test_strip_coefficients_match_bruteforce_line():
         assert np.ptp(K - ref) <= 1e-11 * np.abs(K).max()  # round-off of O(1e3)-term sums
 
 
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")  # far out, the elastic
+# difference itself carries round-off (~1e-13 of a ln a at a ~ shift z); quad notices, harmlessly
 def test_strip_creep_no_cancellation_at_large_shift():
     # v lambda / dx = 3e7: the difference of one strip's creep coefficient between two points
     # by quadrature of the (accurate) elastic difference vs the closed form; the naive
@@ -88,8 +90,12 @@ def test_strip_creep_no_cancellation_at_large_shift():
     def lam(xx):  # elastic strip coefficient, unit modulus without the factor
         return -(adaptive._g0(x2 - xx, 1.0) - adaptive._g0(x1 - xx, 1.0))
 
-    diff = integrate.quad(lambda z: np.exp(-z) * (lam(x[2] + shift * z) - lam(x[9] + shift * z)), 0, 60,
-                          limit=400, epsabs=0, epsrel=1e-12)[0]
+    # the integrand varies on every scale from the kinks (z ~ dx/shift ~ 1e-8) to 1: panels
+    # geometric in z plus the kinks, each integrated by adaptive quadrature
+    kinks = [z for z in ((e - xx) / shift for e in (x1, x2) for xx in (x[2], x[9])) if z > 0]
+    edges = np.unique(np.concatenate([[0.0], kinks, np.geomspace(1e-10, 60, 25)]))
+    diff = sum(integrate.quad(lambda z: np.exp(-z) * (lam(x[2] + shift * z) - lam(x[9] + shift * z)), a, b,
+                              limit=100, epsabs=0, epsrel=1e-10)[0] for a, b in zip(edges[:-1], edges[1:]))
     elastic_part = (lam(x[2]) - lam(x[9])) / SLS.E_inf
     got = K[2, 5] - K[9, 5]
     assert got == pytest.approx(factor * (elastic_part + Ck * diff), rel=1e-7)
@@ -138,8 +144,8 @@ def test_rolling_cylinder_vs_hunter(material, speed_factor):
 
 @pytest.mark.slow
 def test_rolling_cylinder_vs_hunter_resolved_layer():
-    # E_inf/E0 = 100 at 0.3 x the relaxed half-width per creep time: 2048 cells resolve the
-    # leading-edge layer (V tau = 1.5 cells), peak within 1% (2.1% measured: see below)
+    # E_inf/E0 = 100 at 0.3 x the relaxed half-width per creep time: 4096 cells resolve the
+    # leading-edge layer (V tau = 3 cells), so the peak is checked too (to 1%)
     _hunter_case(SLS100, 0.3, 4096, 7)
 
 
@@ -308,7 +314,9 @@ def test_rubber_profile_many_terms():
 
     rubber = make_prony30()
     load = 1000.0
-    s = cylinder(rubber, load, 512, width=3.0)
+    # at 1 cm/s most terms are glassy: the contact is ~0.023 relaxed half-widths wide, so the
+    # domain is 0.08 of them (contact ~ 1/3 of the domain, ~150 cells)
+    s = cylinder(rubber, load, 512, width=0.08)
     speed = 1e-2
     res = adaptive.solve_adaptive(s, rubber, speed=speed, load=load, levels=3)
     uni = bem.solve(s, rubber, speed=speed, load=load, periodic=False, method="uniform")
