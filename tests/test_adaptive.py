@@ -35,7 +35,7 @@ def sphere(material, load, n, width=3.0):
 
 
 # ------------------------------------------------------------------ influence coefficients
-@pytest.mark.parametrize("point", [(0.3, 0.2), (-2.5, 0.7), (1.7, -3.1), (-4.0, -2.0), (0.5, 0.0)])
+@pytest.mark.parametrize("point", [(0.3, 0.2), (-2.5, 0.7), (1.7, -3.1), (-4.0, -2.0), (1.5, 1.0)])
 def test_love_rectangle_every_quadrant(point):
     # Love's corner sum vs brute-force integration of 1/r over the rectangle [0,1]x[0,2]
     # (point outside or inside; the unsigned form fails outside the first quadrant)
