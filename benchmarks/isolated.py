@@ -263,8 +263,9 @@ def run(quick: bool = True, out_dir=".", only=None) -> dict:
     head = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True,
                           cwd=pathlib.Path(__file__).parent).stdout.strip() or None
     result = {"quick": quick, "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-              "git_head": head, "bem_snapshot": snapshot, "machine": {"platform": platform.platform(), "cpus": os.cpu_count(),
-                                            "load_average_1min": load_average()},
+              "git_head": head, "bem_snapshot": snapshot,
+              "machine": {"platform": platform.platform(), "cpus": os.cpu_count(),
+                          "load_average_1min": load_average()},
               "material": {"E0": m.E0, "E_inf": m.E_inf, "creep_time": float(m.creep_times[0]), "nu": m.nu},
               "radius": RADIUS, "loads": LOADS, "domain_over_a0": DOMAIN, "speed_factors": SPEEDS,
               "references": references,
