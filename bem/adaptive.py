@@ -45,6 +45,14 @@ system written for the element *forces* ``f_i = A_i p_i`` (N; N/m for profiles),
 load constraint ``mean(f) = load / N_e`` is exactly the total force. Its complementarity
 residual is therefore stated in forces: ``max |min(f_i / f_mean, g_i / h_ref)|``.
 
+Cost and when to use it: the dense system makes assembly and products ``O(N_e**2)``; with
+elements refined wherever there is contact, ``N_e`` is at least the number of fine cells in
+contact. ``benchmarks/isolated.py`` (results in ``benchmarks/results/``) finds the uniform
+DC-FFT grid (:mod:`bem.isolated`) faster at equal error on cylinders and spheres, and about
+as fast only when the contact covers ~1% of a wide domain; ``method="auto"`` therefore picks
+the uniform grid. The adaptive solver remains an independent check of it (same collocation
+inside the contact, independent kernels) and the seed's method.
+
 Friction: ``friction`` is the dissipation form ``-(1/F) sum_i f_i u'(x_i)`` with the slope of
 the displacement at the element centres (closed form; the creep slope is
 ``(k - g) / L``), ``friction_eq6 = -(1/F) sum_i f_i h'(x_i)`` with the indenter's slope there.
@@ -640,6 +648,9 @@ def _owner(coarse, fine):
 def adaptive_mesh(surface, material, *, speed, load, rtol=1e-8, levels=3, buffer=1.0, gradient=0.05,
                   refine_contact=True, sampling="centre", height=None, maxiter=400, max_elements=20000):
     """The sequence of meshes :func:`solve_adaptive` builds (coarsest first), same arguments.
+
+    It repeats the solves (the refinement depends on each level's pressure), so it costs as
+    much as :func:`solve_adaptive`.
 
     Returns
     -------

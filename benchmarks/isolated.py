@@ -146,6 +146,7 @@ def _plot(groups, path):
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     fig, axes = plt.subplots(3, 3, figsize=(13, 11))
     for ax, (key, rows) in zip(axes.ravel(), groups.items()):
@@ -161,6 +162,7 @@ def _plot(groups, path):
             for ft, fe, fn in front:
                 ax.annotate(str(fn), (ft, fe), fontsize=7, textcoords="offset points", xytext=(3, 3))
         ax.set_title(key, fontsize=10)
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.grid(True, which="both", alpha=0.3)
         ax.set_xlabel("wall time (s)")
         ax.set_ylabel("error max(friction, peak pressure)")
