@@ -148,19 +148,20 @@ def _choose_isolated_method(surface, material, *, speed, load, rtol):
     """The isolated-contact method that ``method="auto"`` selects: ``"uniform"`` or ``"adaptive"``.
 
     Always the uniform DC-FFT grid, the faster one in ``benchmarks/isolated.py`` (tables:
-    ``benchmarks/results/isolated_benchmark.json`` and ``..._xwide.json``, run 2026-11-21 on
-    2 shared cores, load 6-8, at commit 6770fdd with bem/ frozen; figures
+    ``benchmarks/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
+    dates and machine load, 2 shared cores at load 6-8, bem/ frozen for each run; figures
     ``isolated_pareto*.png``). Problems: rolling cylinder vs Hunter and sliding sphere vs a
     Richardson-extrapolated reference, each at ``V lambda / a0 = 0.3, 1, 5``, plus the sphere
     on domains 12 and 24 contact radii wide; error = max of the friction and peak-pressure
-    errors. At equal fine grid the two reach the same peak-pressure error (the same
-    collocation inside the contact) and the uniform grid is faster on every problem and grid
-    (cylinder 2-370x, sphere 3-27x, wide domains 1.0-6.6x). At equal error the uniform grid
-    is faster in 62 of the 65 (problem, tolerance 1e-1..1e-5) cells reached; the three others
-    (wide sphere domains at 1e-2, 3e-4, 1e-3) are within timing noise or come from the
-    adaptive solver's friction evaluation (its slope-matrix dissipation form converges
-    faster), not from its mesh. Nothing here depends on ``speed``, ``load``, ``rtol`` or the
-    material; the arguments are kept for a future rule.
+    errors. At equal fine grid both reach the same peak-pressure error (the same collocation
+    inside the contact) and the uniform grid is faster or equal everywhere (adaptive/uniform
+    time: cylinder 0.94-171, sphere 3-27, wide domains 1.0-6.6). At equal error the uniform
+    grid is faster in 55 of the 65 (problem, tolerance 1e-1..1e-5) cells reached; of the
+    others, 7 are the fast cylinder at 128 cells where both take 0.05 s (3 ms apart, timing
+    noise) and 3 are wide sphere domains, within noise or owed to the adaptive solver's
+    friction evaluation (its slope-matrix dissipation form converges faster), not its mesh.
+    Nothing here depends on ``speed``, ``load``, ``rtol`` or the material; the arguments are
+    kept for a future rule.
     """
     return "uniform"
 
