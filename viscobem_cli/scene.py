@@ -7,16 +7,21 @@ Schema (SI units; unknown keys are an error that lists the valid ones)::
                  |  E0, moduli, times (Prony)  |  E0, compliances, times (creep)
                  |  dma = "file.csv" (columns: frequency, storage E' (Pa), loss E'' (Pa);
                     dma_frequency_unit = "rad/s" | "Hz"; dma_terms_per_decade = 2.0)
-    [surface]    kind = "self_affine" | "sinusoid" | "file", length (m), n, and per kind:
+    [surface]    kind = "self_affine" | "sinusoid" | "file" | "sphere" | "cylinder", length (m),
+                 n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
                               anisotropy, dim (1 or 2), realisations (K: seeds seed..seed+K-1)
                  sinusoid:    amplitude (m), wavelength (m), dim, direction
                  file:        path (.npy/.txt/.csv, relative to the scene file), unit
+                 sphere, cylinder: radius (m), exact (default false: paraboloid); an isolated
+                              indenter centred in a domain of side length (2-D map / 1-D profile)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
                  material's longest creep time)
     [solver]     rtol, maxiter, warm_start, workers (processes, default 1), chunk (speeds per
-                 task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol
+                 task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol,
+                 periodic (default false for sphere and cylinder, true otherwise),
+                 method ("auto"; periodic: "active-set"; isolated: "uniform" | "adaptive")
     [outputs]    friction_curve, fields, plots, vtk, anisotropy, contact_psd, persson (booleans)
     [analysis]   contact_level (C_chi/C_chi(0) of the contour, 0.476), psd_smoothing (modes, 1.0),
                  plot_xi (xi of the maps, polar and PSD plots; default: the friction peak)
@@ -41,14 +46,17 @@ SCHEMA = {
                  "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade"},
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
                 "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
-                "realisations"},
+                "realisations", "radius", "exact"},
     "loading": {"load", "speeds", "xi", "xi_time"},
-    "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol"},
+    "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
+               "method"},
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson"},
     "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
-SURFACE_KINDS = ("self_affine", "sinusoid", "file")
-DEFAULT_SCENE = Path(__file__).with_name("scenes") / "seed.toml"
+SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder")
+INDENTER_KINDS = ("sphere", "cylinder")  # isolated indenters: periodic = false by default
+SCENE_DIR = Path(__file__).with_name("scenes")
+DEFAULT_SCENE = SCENE_DIR / "seed.toml"
 
 
 @dataclass(frozen=True)
@@ -65,6 +73,8 @@ class Scene:
     rtol: float = 1e-8
     maxiter: int = 100
     warm_start: bool = True
+    periodic: bool = True
+    method: str = "auto"
     outputs: dict = field(default_factory=dict)
     source: str = ""
     raw: dict = field(default_factory=dict, repr=False)
@@ -138,8 +148,7 @@ def _surface(t, base):
     _check_keys(t, "surface")
     kind = t.get("kind")
     if kind not in SURFACE_KINDS:
-        raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)} (periodic cells), "
-                         f"got {kind!r}")
+        raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)}, got {kind!r}")
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
@@ -158,6 +167,11 @@ def _surface(t, base):
     if kind == "sinusoid":
         args = {k: t[k] for k in ("amplitude", "wavelength", "dim", "direction") if k in t}
         return (surfaces.sinusoid(t["n"], t["length"], **args),)
+    if kind in INDENTER_KINDS:
+        if "radius" not in t:
+            raise InputError(f"[surface] radius (m) is required for kind = {kind!r}")
+        make = surfaces.sphere if kind == "sphere" else surfaces.cylinder
+        return (make(radius=t["radius"], n=t["n"], length=t["length"], exact=t.get("exact", False)),)
     if "path" not in t:
         raise InputError("[surface] path is required for kind = 'file'")
     return (surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m")),)
@@ -208,6 +222,14 @@ def parse(text, *, base=Path("."), source="<string>"):
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
     run = _solver(solver)
+    run["periodic"] = solver.get("periodic", raw["surface"].get("kind") not in INDENTER_KINDS)
+    if not isinstance(run["periodic"], bool):
+        raise InputError(f"[solver] periodic must be true or false, got {run['periodic']!r}")
+    run["method"] = solver.get("method", "auto")
+    valid = ("auto", "active-set") if run["periodic"] else ("auto", "uniform", "adaptive")
+    if run["method"] not in valid:
+        raise InputError(f"[solver] method must be one of {', '.join(map(repr, valid))} with periodic = "
+                         f"{str(run['periodic']).lower()}, got {run['method']!r}")
     analysis = raw.get("analysis", {})
     _check_keys(analysis, "analysis")
     outputs = {"friction_curve": True, "fields": True, "plots": True, "vtk": False,

@@ -118,7 +118,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     outputs = scene.outputs
     keep_fields = outputs["fields"] or outputs["plots"] or outputs["vtk"]
     keep_chi = outputs["contact_psd"]
-    settings = {"rtol": scene.rtol, "maxiter": scene.maxiter, "anisotropy": outputs["anisotropy"],
+    settings = {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
+                "anisotropy": outputs["anisotropy"],
                 "fields": keep_fields, "chi": keep_chi}
     record = {
         "title": scene.title, "scene": scene.source, "viscobem_version": "0.1.0",
@@ -134,7 +135,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
                             "terms_folded": int(scene.material.moduli.size - material.moduli.size)},
         "surface": _surface_record(scene.surface), "realisations": len(scene.realisations),
         "seeds": list(scene.seeds), "loads": list(scene.loads), "load": scene.load, "xi_time": scene.xi_time,
-        "solver": {"rtol": scene.rtol, "maxiter": scene.maxiter, "workers": workers, "scheduler": scheduler},
+        "solver": {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
+                   "workers": workers, "scheduler": scheduler},
         "outputs": dict(outputs), "stages": stages, "stages_run": stages_run, "complete": False,
     }
     recs, resumed, todo_keys = {}, 0, {}
@@ -257,6 +259,7 @@ def _tasks(scene, material, todo, points_dir, workers, scheduler, keep_fields, k
             tasks.append({"material": material, "surfaces": list(scene.realisations), "seeds": list(scene.seeds),
                           "load": load, "l": l, "speeds": scene.speeds, "xi": scene.xi, "indices": chunk,
                           "keys": keys, "rtol": scene.rtol, "maxiter": scene.maxiter,
+                          "periodic": scene.periodic, "method": scene.method,
                           "warm_start": scene.warm_start, "anisotropy": scene.outputs["anisotropy"],
                           "keep_fields": keep_fields, "keep_chi": keep_chi, "out": str(points_dir),
                           "single_thread": scheduler is None and workers > 1})

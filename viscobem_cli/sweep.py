@@ -80,7 +80,8 @@ def solve_point(task, r, surface, speed, load, initial):
     t0 = time.perf_counter()
     try:
         res = bem.solve(surface, task["material"], speed=speed, load=load, rtol=task["rtol"],
-                        maxiter=task["maxiter"], initial=initial)
+                        maxiter=task["maxiter"], initial=initial, periodic=task.get("periodic", True),
+                        method=task.get("method", "auto"))
         message = res.message
     except ConvergenceError as err:
         res, message = None, str(err)
@@ -124,7 +125,8 @@ def run_chunk(task, callback=None):
             if key is None:  # finished in an earlier run
                 continue
             speed = float(task["speeds"][i])
-            initial = previous[r] if task["warm_start"] else None
+            # the adaptive mesh changes with speed: no warm start across its points
+            initial = previous[r] if task["warm_start"] and task.get("method") != "adaptive" else None
             rec, res = solve_point(task, r, surface, speed, task["load"], initial)
             name = point_name(r, task["l"], i)
             rec.update(key=key, r=r, l=task["l"], i=i, seed=task["seeds"][r], load=task["load"],
