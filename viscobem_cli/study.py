@@ -50,7 +50,10 @@ def fold_material(scene):
     if m.is_elastic or scene.fold_tol == 0 or moving.size == 0:
         return m
     s = scene.surface
-    w_min = 2 * np.pi / s.length * moving.min()
+    # Glassy folding is exact only where every mode moves: on a periodic profile the lowest
+    # frequency is 2 pi v / L, but the q_x = 0 modes of a 2-D cell are static (they see E0) and
+    # an isolated domain has no lowest frequency, so there only relaxed terms are folded.
+    w_min = 2 * np.pi / s.length * moving.min() if scene.periodic and s.ndim == 1 else 0.0
     w_max = np.pi * s.n / s.length * moving.max()
     return m.folded(w_min, w_max, tol=scene.fold_tol)
 
