@@ -5,8 +5,9 @@ Built from :mod:`numpy.fft` (full complex spectrum) and the material's *relaxati
 uses — so agreement checks the FFT layout, the Nyquist handling and the Prony/creep
 interconversion as well as the contact solution. Conventions as SPEC §2.2: axis 0 is x, the
 surface slides in ``+x`` at ``speed`` and ``u_q = 2 (1 - nu**2) / |q| / E(w = -q_x v) p_q``.
-Taking the real part of the inverse transform averages every mode with its conjugate
-partner, which at the x-Nyquist mode keeps the real part of the symbol (SPEC §7).
+The symbol is made Hermitian, ``a_q -> (a_q + conj(a_-q)) / 2`` with ``-q`` taken on the
+grid: this changes only the x-Nyquist modes, whose symbol becomes its real part (SPEC §7),
+and makes ``1 / a_q`` the exact inverse of the real operator.
 """
 import numpy as np
 
@@ -23,7 +24,9 @@ def symbol(shape, length, material, speed):
     qn = np.sqrt(sum(c**2 for c in q))
     with np.errstate(divide="ignore"):
         green = np.where(qn > 0, 2 * (1 - material.nu**2) / np.where(qn > 0, qn, 1.0), 0.0)
-    return green / material.complex_modulus(-q[0] * speed)
+    a = green / material.complex_modulus(-q[0] * speed)
+    mirror = a[tuple(np.ix_(*[(-np.arange(n)) % n for n in shape]))]  # a at -q on the grid
+    return 0.5 * (a + np.conj(mirror))
 
 
 def displacement(pressure, a):
@@ -34,8 +37,8 @@ def displacement(pressure, a):
 def full_contact_pressure(heights, a):
     """Zero-mean pressure (Pa) making the gap vanish everywhere; add the mean load to it.
 
-    The real part of the inverse keeps exactly the Hermitian part of ``1/a``; full contact
-    is the one case where the contact problem is solved exactly in Fourier space.
+    Full contact is the one case where the contact problem is solved exactly in Fourier
+    space; ``a`` must be Hermitian (as :func:`symbol` returns it).
     """
     inv = np.where(a != 0, 1.0 / np.where(a != 0, a, 1.0), 0.0)
     return np.real(np.fft.ifftn(np.fft.fftn(heights) * inv))
