@@ -78,6 +78,10 @@ def main(argv=None):
     except InputError as err:
         print(f"viscobem: error: {err}", file=sys.stderr)
         return 2
+    except OSError as err:  # e.g. an output folder that cannot be written
+        where = f" {err.filename!r}" if getattr(err, "filename", None) else ""
+        print(f"viscobem: error: cannot write{where}: {err.strerror or err}", file=sys.stderr)
+        return 2
     except ConvergenceError as err:
         print(f"viscobem: did not converge: {err}", file=sys.stderr)
         return 1

@@ -13,6 +13,17 @@ def _pyplot():
     return plt
 
 
+def _save(fig, path):
+    """PNG of ``fig`` written atomically (temporary file + rename): never a truncated plot."""
+    import io
+
+    from .study import write_atomic
+
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=120)
+    write_atomic(path, buffer.getvalue(), mode="wb")
+
+
 def friction_curve(scene, curve, path):
     """Friction (both forms) and contact fraction against xi, log axes."""
     plt = _pyplot()
@@ -30,7 +41,7 @@ def friction_curve(scene, curve, path):
     lines2 = ax2.get_legend_handles_labels()
     ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], loc="best", fontsize=8)
     ax.set_title(scene.title, fontsize=9)
-    fig.savefig(path, dpi=120)
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -54,7 +65,7 @@ def pressure_map(surface, result, xi, path):
         ax.text(0.58, 1.04, "sliding (+x)", transform=ax.transAxes, ha="right", va="center", fontsize=8)
     ax.set_title(rf"$\xi$ = {xi:.3g}: $\mu$ = {result.friction:.4g}, contact {100 * result.contact_fraction:.2f} %",
                  fontsize=9, pad=18)
-    fig.savefig(path, dpi=120)
+    _save(fig, path)
     plt.close(fig)
 
 

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from bem import Material, surfaces
+from bem.checks import check_positive
 from bem.errors import InputError
 
 if sys.version_info >= (3, 11):
@@ -67,6 +68,8 @@ class Scene:
 
 def _check_keys(table, section):
     valid = SCHEMA[section]
+    if not isinstance(table, dict):
+        raise InputError(f"[{section}] must be a table of keys ({', '.join(sorted(valid))}), got {table!r}")
     unknown = sorted(set(table) - valid)
     if unknown:
         where = f"[{section}]" if section else "the top level"
@@ -95,6 +98,8 @@ def _material(t, base):
         return Material.from_prony(E0=t["E0"], moduli=t["moduli"], times=t.get("times", []), nu=nu)
     if kind == "creep":
         return Material.from_creep(E0=t["E0"], compliances=t["compliances"], times=t.get("times", []), nu=nu)
+    if not isinstance(t["dma"], str):
+        raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
     path = (base / t["dma"]).resolve()
     try:
         data = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2)
@@ -125,31 +130,63 @@ def _surface(t, base):
     if kind == "sinusoid":
         args = {k: t[k] for k in ("amplitude", "wavelength", "dim", "direction") if k in t}
         return surfaces.sinusoid(t["n"], t["length"], **args)
-    if "path" not in t:
-        raise InputError("[surface] path is required for kind = 'file'")
+    if not isinstance(t.get("path"), str):
+        raise InputError(f"[surface] path (a file path string) is required for kind = 'file', got "
+                         f"{t.get('path')!r}")
     return surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m"))
+
+
+def _number(section, key, value):
+    """``float(value)`` for a TOML number (not a bool or string), else InputError naming it."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"[{section}] {key} must be a number, got {value!r}")
+    return float(value)
 
 
 def _speeds(t, material, surface):
     _check_keys(t, "loading")
     if "load" not in t:
         raise InputError("[loading] load is required (N for 2-D surfaces, N/m for 1-D profiles)")
+    load = check_positive("[loading] load (N, or N/m for 1-D profiles)", _number("loading", "load", t["load"]))
     if material.is_elastic:
-        tau = float(t.get("xi_time", 1.0))
+        tau = t.get("xi_time", 1.0)
     else:
-        tau = float(t.get("xi_time", material.creep_times.max()))
+        tau = t.get("xi_time", material.creep_times.max())
+    tau = check_positive("[loading] xi_time (s)", _number("loading", "xi_time", tau))
     if ("speeds" in t) == ("xi" in t):
         raise InputError("[loading] give exactly one of speeds = [...] (m/s) or xi = {start, stop, num}")
     if "speeds" in t:
-        speeds = np.atleast_1d(np.asarray(t["speeds"], dtype=float))
-        return speeds, speeds * tau / surface.length, tau
+        values = t["speeds"] if isinstance(t["speeds"], list) else [t["speeds"]]
+        speeds = np.array([_number("loading", "speeds", v) for v in values], dtype=float)
+        if speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
+            raise InputError(f"[loading] speeds must be a non-empty list of finite speeds >= 0 m/s, "
+                             f"got {t['speeds']!r}")
+        return load, speeds, speeds * tau / surface.length, tau
     xi = t["xi"]
     if not isinstance(xi, dict) or set(xi) != {"start", "stop", "num"}:
         raise InputError("[loading] xi must be a table {start, stop, num} (log-spaced)")
-    if not (xi["start"] > 0 and xi["stop"] >= xi["start"] and int(xi["num"]) >= 1):
-        raise InputError(f"[loading] xi needs 0 < start <= stop and num >= 1, got {xi}")
-    values = np.logspace(np.log10(xi["start"]), np.log10(xi["stop"]), int(xi["num"]))
-    return values * surface.length / tau, values, tau
+    start, stop = (_number("loading", f"xi.{k}", xi[k]) for k in ("start", "stop"))
+    num = xi["num"]
+    if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+        raise InputError(f"[loading] xi.num must be an integer >= 1, got {num!r}")
+    if not (0 < start <= stop < np.inf):
+        raise InputError(f"[loading] xi needs 0 < start <= stop (finite), got {xi}")
+    values = np.logspace(np.log10(start), np.log10(stop), num)
+    return load, values * surface.length / tau, values, tau
+
+
+def _solver(t):
+    _check_keys(t, "solver")
+    rtol = _number("solver", "rtol", t.get("rtol", 1e-8))
+    if not 0 < rtol < 1:
+        raise InputError(f"[solver] rtol must be in (0, 1), got {rtol!r}")
+    maxiter = t.get("maxiter", 400)
+    if isinstance(maxiter, bool) or not isinstance(maxiter, int) or maxiter < 1:
+        raise InputError(f"[solver] maxiter must be an integer >= 1, got {maxiter!r}")
+    warm = t.get("warm_start", True)
+    if not isinstance(warm, bool):
+        raise InputError(f"[solver] warm_start must be true or false, got {warm!r}")
+    return rtol, maxiter, warm
 
 
 def parse(text, *, base=Path("."), source="<string>"):
@@ -164,9 +201,8 @@ def parse(text, *, base=Path("."), source="<string>"):
             raise InputError(f"scene {source}: section [{section}] is required")
     material = _material(raw["material"], base)
     surface = _surface(raw["surface"], base)
-    speeds, xi, tau = _speeds(raw["loading"], material, surface)
-    solver = raw.get("solver", {})
-    _check_keys(solver, "solver")
+    load, speeds, xi, tau = _speeds(raw["loading"], material, surface)
+    rtol, maxiter, warm_start = _solver(raw.get("solver", {}))
     outputs = {"friction_curve": True, "fields": True, "plots": True, "vtk": False,
                "anisotropy": False, "contact_psd": False}
     _check_keys(raw.get("outputs", {}), "outputs")
@@ -178,16 +214,17 @@ def parse(text, *, base=Path("."), source="<string>"):
         if outputs[key]:
             raise InputError(f"[outputs] {key} = true is not available in this version of viscobem")
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
-                 load=float(raw["loading"]["load"]), speeds=speeds, xi=xi, xi_time=tau,
-                 rtol=float(solver.get("rtol", 1e-8)), maxiter=int(solver.get("maxiter", 400)),
-                 warm_start=bool(solver.get("warm_start", True)), outputs=outputs, source=source, raw=raw)
+                 load=load, speeds=speeds, xi=xi, xi_time=tau, rtol=rtol, maxiter=maxiter,
+                 warm_start=warm_start, outputs=outputs, source=source, raw=raw)
 
 
 def load(path=None):
     """Read a scene file (the built-in seed study when ``path`` is None)."""
     path = Path(path) if path is not None else DEFAULT_SCENE
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except OSError as err:
         raise InputError(f"scene: cannot read {str(path)!r}: {err.strerror}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"scene: cannot read {str(path)!r}: not a UTF-8 text (TOML) file") from None
     return parse(text, base=path.parent, source=str(path))

@@ -1,8 +1,11 @@
 """Run a scene and write its outputs: results.json, fields.npz, PNG plots, VTK on request.
 
 Every finished point of a sweep is written to ``results.json`` at once (atomically:
-written to a temporary file, then renamed), so an interrupted sweep keeps what it did.
+written to a temporary file, then renamed), so an interrupted sweep keeps what it did;
+``fields.npz`` and the plots are written the same way, so a run that fails never leaves a
+truncated file, and a scene rejected as bad input touches nothing in the output folder.
 """
+import io
 import json
 import os
 import platform
@@ -94,8 +97,9 @@ def run_scene(scene, out_dir, *, progress=True):
                   "pressure": np.stack([fields[i].pressure for i in idx]),
                   "displacement": np.stack([fields[i].displacement for i in idx]),
                   "gap": np.stack([fields[i].gap for i in idx])}
-        with open(out / "fields.npz", "wb") as f:
-            np.savez_compressed(f, **arrays)
+        buffer = io.BytesIO()
+        np.savez_compressed(buffer, **arrays)
+        write_atomic(out / "fields.npz", buffer.getvalue(), mode="wb")
         record["stages"]["fields"] = time.perf_counter() - t0
         written.append("fields.npz")
     if scene.outputs["plots"]:
