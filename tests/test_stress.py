@@ -240,7 +240,14 @@ def _summary(tmp_path_factory):
     raised = [r for r in RECORDS if r["outcome"] == "raised"]
     converged = [r for r in RECORDS if r["outcome"] == "converged"]
     worst = sorted(converged, key=lambda r: -r["matvecs"])[:10]
+    bands = {}  # conditioning: operator products against the symbol's largest phase
+    for lo, hi in [(0, 10), (10, 45), (45, 80), (80, 90.01)]:
+        mv = [r["matvecs"] for r in converged if lo <= r["max_phase_deg"] < hi]
+        if mv:
+            bands[f"{lo}-{min(hi, 90):g} deg"] = {"cases": len(mv), "median_matvecs": float(np.median(mv)),
+                                                   "max_matvecs": int(max(mv))}
     summary = {"cases": len(RECORDS), "converged": len(converged), "raised": len(raised),
+               "matvecs_by_max_phase": bands,
                "total_solve_time_s": sum(r["wall_time"] for r in RECORDS),
                "max_iterations": max((r["iterations"] for r in converged), default=None),
                "max_matvecs": max((r["matvecs"] for r in converged), default=None),
