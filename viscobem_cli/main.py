@@ -4,8 +4,9 @@
                                               run a study (the seed paper's by default;
                                               NAME: a built-in scene, e.g. seed_figures);
                                               rerun on the same DIR to resume a sweep
-    viscobem bench periodic [--quick] --out DIR   benchmark the periodic BEM
-    viscobem bench isolated [--quick] --out DIR   isolated contacts: uniform grid vs adaptive mesh
+    viscobem bench [--quick] --out DIR        run time against error of every solver, scaling,
+                                              skipping; regenerates README's bench table
+    viscobem bench periodic|fem|isolated [--quick] --out DIR   one solver's detailed benchmark
     viscobem scene                            print the built-in default scene
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
@@ -56,9 +57,21 @@ def _cmd_scene(args):
 
 def _cmd_bench(args):
     import importlib
+    from pathlib import Path
 
-    module = importlib.import_module(f"benchmarks.{args.name}")
-    module.run(quick=args.quick, out_dir=args.out)
+    if args.name != "all":
+        module = importlib.import_module(f"benchmarks.{args.name}")
+        module.run(quick=args.quick, out_dir=args.out)
+        return 0
+    from benchmarks import suite
+
+    readme = None
+    if not args.no_readme:
+        readme = Path(args.readme) if args.readme else Path(suite.__file__).resolve().parents[1] / "README.md"
+        if not readme.is_file():
+            print(f"viscobem bench: no README at {readme}; the table is only in {args.out}/bench.md")
+            readme = None
+    suite.run(quick=args.quick, out_dir=args.out, readme=readme)
     return 0
 
 
@@ -78,7 +91,11 @@ def build_parser():
     scene = sub.add_parser("scene", help="print the built-in default scene (a template)")
     scene.set_defaults(func=_cmd_scene)
     bench = sub.add_parser("bench", help="run a benchmark")
-    bench.add_argument("name", choices=["periodic", "fem", "isolated"], help="which benchmark")
+    bench.add_argument("name", nargs="?", default="all", choices=["all", "periodic", "fem", "isolated"],
+                       help="all (default: every solver, scaling, skipping) or one detailed benchmark")
+    bench.add_argument("--readme", default=None, help="README whose bench table to regenerate "
+                       "(default: the project's README.md)")
+    bench.add_argument("--no-readme", action="store_true", help="leave the README alone")
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)
@@ -93,6 +110,10 @@ def main(argv=None):
         return args.func(args)
     except InputError as err:
         print(f"viscobem: error: {err}", file=sys.stderr)
+        return 2
+    except OSError as err:  # e.g. an output folder that cannot be written
+        where = f" {err.filename!r}" if getattr(err, "filename", None) else ""
+        print(f"viscobem: error: cannot write{where}: {err.strerror or err}", file=sys.stderr)
         return 2
     except ConvergenceError as err:
         print(f"viscobem: did not converge: {err}", file=sys.stderr)

@@ -21,6 +21,17 @@ def _pyplot():
     return plt
 
 
+def _save(fig, path):
+    """PNG of ``fig`` written atomically (temporary file + rename): never a truncated plot."""
+    import io
+
+    from .sweep import write_atomic
+
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=120)
+    write_atomic(path, buffer.getvalue(), mode="wb")
+
+
 def _arr(values):
     return np.array([np.nan if v is None else v for v in values], dtype=float)
 
@@ -60,7 +71,7 @@ def friction_curve(scene, record, path):
 
     ax.set_title(textwrap.fill(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), 90),
                  fontsize=8)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -81,7 +92,7 @@ def contact_area(scene, record, path):
     ax.set_ylabel("contact area fraction")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -103,7 +114,7 @@ def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0):
         ax.set_ylabel("y (mm)")
         _sliding_arrow(ax)
     ax.set_title(rf"$\xi$ = {xi:.3g}: {title}", fontsize=9, pad=18)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -127,7 +138,7 @@ def polar_m2(scene, record, l, i, path):
                                       rf"$\Theta$ = {np.degrees(m.theta_max):.0f}°")
     ax.set_title(r"$m_2(\theta) / \max m_2$ of the deformed surface (sliding along $\theta = 0$)", fontsize=9)
     ax.legend(fontsize=7, loc="lower center", bbox_to_anchor=(0.5, -0.22))
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -153,7 +164,7 @@ def psd_contour(scene, cpsd, ellipse, xi, path):
     ax.set_ylabel(r"$q_y / q_L$")
     ax.legend(fontsize=7, loc="upper right")
     ax.set_title(rf"contact PSD at $\xi$ = {xi:.3g}, contour {ellipse.level:g}", fontsize=9)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -180,7 +191,7 @@ def anisotropy_vs_xi(scene, record, path, peak):
     ax.set_ylabel("anisotropy ratio (1 = isotropic)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -218,7 +229,7 @@ def indenter_maps(scene, fields, out):
         ax.set_ylabel("pressure (MPa)")
         ax.legend(fontsize=8)
         ax.set_title(scene.title, fontsize=9)
-        fig.savefig(out / "pressure_profiles.png", dpi=120)
+        _save(fig, out / "pressure_profiles.png")
         plt.close(fig)
         return ["pressure_profiles.png"]
     ext = [x[0] - surface.spacing * 5e2, x[-1] + surface.spacing * 5e2] * 2
@@ -232,7 +243,7 @@ def indenter_maps(scene, fields, out):
         ax.set_xlabel("x (mm), sliding toward +x")
         ax.set_ylabel("y (mm)")
         ax.set_title(rf"$\xi$ = {scene.xi[k]:.3g}: $\mu$ = {r.friction:.3g}", fontsize=9)
-    fig.savefig(out / "pressure_maps.png", dpi=120)
+    _save(fig, out / "pressure_maps.png")
     plt.close(fig)
     fig, ax = plt.subplots(figsize=(5.2, 4.6), constrained_layout=True)
     keys = sorted(fields, key=lambda k: scene.speeds[k])
@@ -246,7 +257,7 @@ def indenter_maps(scene, fields, out):
     ax.set_xlabel("x (mm), sliding toward +x")
     ax.set_ylabel("y (mm)")
     ax.set_title("contact outlines", fontsize=9)
-    fig.savefig(out / "contact_outlines.png", dpi=120)
+    _save(fig, out / "contact_outlines.png")
     plt.close(fig)
     return ["pressure_maps.png", "contact_outlines.png"]
 

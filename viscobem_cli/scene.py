@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from bem import Material, surfaces
+from bem.checks import check_positive
 from bem.errors import InputError
 
 if sys.version_info >= (3, 11):
@@ -102,6 +103,8 @@ class Scene:
 
 def _check_keys(table, section):
     valid = SCHEMA[section]
+    if not isinstance(table, dict):
+        raise InputError(f"[{section}] must be a table of keys ({', '.join(sorted(valid))}), got {table!r}")
     unknown = sorted(set(table) - valid)
     if unknown:
         where = f"[{section}]" if section else "the top level"
@@ -130,6 +133,8 @@ def _material(t, base):
         return Material.from_prony(E0=t["E0"], moduli=t["moduli"], times=t.get("times", []), nu=nu)
     if kind == "creep":
         return Material.from_creep(E0=t["E0"], compliances=t["compliances"], times=t.get("times", []), nu=nu)
+    if not isinstance(t["dma"], str):
+        raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
     path = (base / t["dma"]).resolve()
     try:
         data = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2)
@@ -172,9 +177,17 @@ def _surface(t, base):
             raise InputError(f"[surface] radius (m) is required for kind = {kind!r}")
         make = surfaces.sphere if kind == "sphere" else surfaces.cylinder
         return (make(radius=t["radius"], n=t["n"], length=t["length"], exact=t.get("exact", False)),)
-    if "path" not in t:
-        raise InputError("[surface] path is required for kind = 'file'")
+    if not isinstance(t.get("path"), str):
+        raise InputError(f"[surface] path (a file path string) is required for kind = 'file', got "
+                         f"{t.get('path')!r}")
     return (surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m")),)
+
+
+def _number(section, key, value):
+    """``float(value)`` for a TOML number (not a bool or string), else InputError naming it."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"[{section}] {key} must be a number, got {value!r}")
+    return float(value)
 
 
 def _speeds(t, material, surface):
@@ -182,13 +195,18 @@ def _speeds(t, material, surface):
     if "load" not in t:
         raise InputError("[loading] load is required (N for 2-D surfaces, N/m for 1-D profiles)")
     if material.is_elastic:
-        tau = float(t.get("xi_time", 1.0))
+        tau = t.get("xi_time", 1.0)
     else:
-        tau = float(t.get("xi_time", material.creep_times.max()))
+        tau = t.get("xi_time", material.creep_times.max())
+    tau = check_positive("[loading] xi_time (s)", _number("loading", "xi_time", tau))
     if ("speeds" in t) == ("xi" in t):
         raise InputError("[loading] give exactly one of speeds = [...] (m/s) or xi = {start, stop, num}")
     if "speeds" in t:
-        speeds = np.atleast_1d(np.asarray(t["speeds"], dtype=float))
+        values = t["speeds"] if isinstance(t["speeds"], list) else [t["speeds"]]
+        speeds = np.array([_number("loading", "speeds", v) for v in values], dtype=float)
+        if speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
+            raise InputError(f"[loading] speeds must be a non-empty list of finite speeds >= 0 m/s, "
+                             f"got {t['speeds']!r}")
         return speeds, speeds * tau / surface.length, tau
     xi = t["xi"]
     if isinstance(xi, list):
@@ -198,9 +216,13 @@ def _speeds(t, material, surface):
         return values * surface.length / tau, values, tau
     if not isinstance(xi, dict) or set(xi) != {"start", "stop", "num"}:
         raise InputError("[loading] xi must be a table {start, stop, num} (log-spaced) or a list of values")
-    if not (xi["start"] > 0 and xi["stop"] >= xi["start"] and int(xi["num"]) >= 1):
-        raise InputError(f"[loading] xi needs 0 < start <= stop and num >= 1, got {xi}")
-    values = np.logspace(np.log10(xi["start"]), np.log10(xi["stop"]), int(xi["num"]))
+    start, stop = (_number("loading", f"xi.{k}", xi[k]) for k in ("start", "stop"))
+    num = xi["num"]
+    if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+        raise InputError(f"[loading] xi.num must be an integer >= 1, got {num!r}")
+    if not (0 < start <= stop < np.inf):
+        raise InputError(f"[loading] xi needs 0 < start <= stop (finite), got {xi}")
+    values = np.logspace(np.log10(start), np.log10(stop), num)
     return values * surface.length / tau, values, tau
 
 
@@ -259,8 +281,9 @@ def parse(text, *, base=Path("."), source="<string>"):
 
 def _loads(value):
     values = value if isinstance(value, list) else [value]
-    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and v > 0 for v in values):
-        raise InputError(f"[loading] load must be a number > 0 or a non-empty list of them "
+    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf
+                             for v in values):
+        raise InputError(f"[loading] load must be a finite number > 0 or a non-empty list of them "
                          f"(N; N/m for 1-D profiles), got {value!r}")
     return tuple(float(v) for v in values)
 
@@ -272,9 +295,12 @@ def _solver(t):
             raise InputError(f"[solver] {key} must be an integer >= {low}, got {v!r}")
         return v
 
-    rtol = t.get("rtol", 1e-8)
-    if not (isinstance(rtol, (int, float)) and 0 < rtol < 1):
+    rtol = _number("solver", "rtol", t.get("rtol", 1e-8))
+    if not 0 < rtol < 1:
         raise InputError(f"[solver] rtol must be in (0, 1), got {rtol!r}")
+    warm = t.get("warm_start", True)
+    if not isinstance(warm, bool):
+        raise InputError(f"[solver] warm_start must be true or false, got {warm!r}")
     fold = t.get("fold_tol", 1e-6)
     if not (isinstance(fold, (int, float)) and 0 <= fold < 1):
         raise InputError(f"[solver] fold_tol must be in [0, 1) (0: no folding), got {fold!r}")
@@ -282,7 +308,7 @@ def _solver(t):
     if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
         raise InputError(f"[solver] scheduler must be an address such as 'tcp://host:8786', got {scheduler!r}")
     return {"rtol": float(rtol), "maxiter": integer("maxiter", 400, 1),
-            "warm_start": bool(t.get("warm_start", True)), "workers": integer("workers", 1, 1),
+            "warm_start": warm, "workers": integer("workers", 1, 1),
             "chunk": integer("chunk", 0, 0), "scheduler": scheduler, "fold_tol": float(fold)}
 
 
@@ -297,7 +323,9 @@ def load(path=None):
         path = DEFAULT_SCENE.parent / f"{path}.toml"
     path = Path(path) if path is not None else DEFAULT_SCENE
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except OSError as err:
         raise InputError(f"scene: cannot read {str(path)!r}: {err.strerror}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"scene: cannot read {str(path)!r}: not a UTF-8 text (TOML) file") from None
     return parse(text, base=path.parent, source=str(path))

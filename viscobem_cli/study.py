@@ -3,15 +3,20 @@
 Only what the scene asks for is computed (SPEC §5): anisotropy, the contact PSD, Persson's
 theory, fields, plots and VTK each run only when requested, and ``results.json`` lists the
 stages that ran (``stages_run``) with their times (``stages``, s; per-point work summed over
-points). Prony terms that are fully relaxed or glassy over the sweep's frequency band
-``[q_L v_min, (pi n / L) v_max]`` are folded into the elastic part first. The sweep itself
+points). Prony terms that are fully relaxed over the sweep's frequency band (and, on periodic
+profiles, glassy over ``[q_L v_min, (pi n / L) v_max]``) are folded into the elastic part first. The sweep itself
 is :mod:`viscobem_cli.sweep`: every finished point is on disk at once, and a rerun in the
 same folder resumes. ``results.json`` is rewritten (atomically) after every point.
 
 Ensembles: with ``realisations = K`` each number is reported as the mean over the
 realisations that converged and its standard error ``std(ddof=1) / sqrt(k)`` (``None`` for
 one realisation).
+
+Every file (``results.json``, ``fields.npz``, the plots) is written atomically (a temporary
+file, then renamed), so a run that fails never leaves a truncated file, and a scene rejected
+as bad input touches nothing in the output folder.
 """
+import io
 import json
 import math
 import platform
@@ -108,6 +113,12 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     A folder holding finished points of the same study is resumed: those points are not
     solved again.
     """
+    # the solver's own input checks, before anything in out_dir is touched
+    from bem.sliding import _check_inputs
+
+    for load in scene.loads:
+        for speed in (float(np.min(scene.speeds)), float(np.max(scene.speeds))):
+            _check_inputs(scene.surface, scene.material, speed, load, None, scene.rtol)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)
@@ -216,8 +227,9 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
                   "pressure": np.stack([fields[i].pressure for i in idx]),
                   "displacement": np.stack([fields[i].displacement for i in idx]),
                   "gap": np.stack([fields[i].gap for i in idx])}
-        with open(out / "fields.npz", "wb") as f:
-            np.savez_compressed(f, **arrays)
+        buffer = io.BytesIO()
+        np.savez_compressed(buffer, **arrays)
+        write_atomic(out / "fields.npz", buffer.getvalue(), mode="wb")
         stages["fields"] = time.perf_counter() - t0
         stages_run.append("fields")
         written.append("fields.npz")
