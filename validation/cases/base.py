@@ -92,6 +92,14 @@ class CaseOutput:
         self.checks.append(Check(metric, solver, str(label), float(value),
                                  None if tolerance is None else float(tolerance), why))
 
+    def converged(self, solver, label, sol, rtol=1e-8):
+        """Record a failed solve as a failed check; True when ``sol`` can be compared."""
+        if sol.get("success", True):
+            return True
+        self.check("solver_converged_residual", solver, label, sol["residual"], rtol,
+                   f"the solve must reach its complementarity tolerance: {sol['message']}")
+        return False
+
     def cost(self, solver, label, cost, detail=""):
         self.runs.append(Run(solver, str(label), cost.seconds, cost.peak_mib, detail))
 

@@ -3,7 +3,9 @@
 Every adapter returns ``x`` (m, sample abscissae along the sliding direction through the
 indenter's axis), ``pressure`` (Pa) there, ``spacing`` (m, the element or cell size used for
 edge errors), ``trailing_edge``/``leading_edge`` (m), ``friction``, ``peak_pressure``, and
-the native result under ``result``. Conventions of SPEC §2.2: the indenter moves in ``+x``,
+the native result under ``result``, and ``success``. A BEM solve that misses its tolerance
+comes back with ``success=False``, its ``residual`` and ``message`` and nothing else: the
+cases then report a failed convergence check instead of comparing an invalid answer. Conventions of SPEC §2.2: the indenter moves in ``+x``,
 the leading edge is at ``+x``, the indenter's axis at ``x = 0``.
 """
 from __future__ import annotations
@@ -37,6 +39,12 @@ def cylinder_cell(material, radius, load, speed, cells):
     return n + n % 2, dx
 
 
+def _failed(res, detail):
+    """Adapter output of a solve that did not reach its tolerance: no fields to compare."""
+    return dict(success=False, residual=float(res.residual), message=res.message, detail=detail,
+                friction=float("nan"), result=None)
+
+
 def bem_periodic_cylinder(material, *, radius, load, speed, cells):
     """The periodic 1-D BEM (plane strain) on a long cell holding one cylinder."""
     import bem
@@ -44,9 +52,11 @@ def bem_periodic_cylinder(material, *, radius, load, speed, cells):
     n, dx = cylinder_cell(material, radius, load, speed, cells)
     x = (np.arange(n) - n // 2) * dx
     surface = bem.surfaces.from_heights(-x**2 / (2 * radius), n * dx)
-    res = bem.solve(surface, material, speed=speed, load=load)
+    res = bem.solve(surface, material, speed=speed, load=load, raise_on_failure=False)
+    if not res.success:
+        return _failed(res, f"n = {n}: {res.message}")
     trail, lead = sampled_edges(x, res.pressure)
-    return dict(x=x, pressure=res.pressure, spacing=dx, trailing_edge=trail, leading_edge=lead,
+    return dict(success=True, x=x, pressure=res.pressure, spacing=dx, trailing_edge=trail, leading_edge=lead,
                 friction=res.friction, peak_pressure=float(res.pressure.max()), result=res,
                 surface=surface, origin=(float(x[0]), 0.0), detail=f"n = {n}, dx = {dx:.3e} m")
 
@@ -62,7 +72,7 @@ def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None):
     res = fem_reference.rolling_cylinder(material, radius=radius, load=load, speed=speed,
                                          resolution=resolution, vtk=vtk)
     friction = res.friction_dissipation if speed > 0 else res.friction
-    return dict(x=res.x, pressure=res.pressure, spacing=res.element_size,
+    return dict(success=True, x=res.x, pressure=res.pressure, spacing=res.element_size,
                 trailing_edge=res.trailing_edge, leading_edge=res.leading_edge, friction=friction,
                 friction_moment=res.friction, peak_pressure=res.peak_pressure, result=res,
                 detail=f"{res.n_unknowns} unknowns, h = {res.element_size:.3e} m")
@@ -86,10 +96,12 @@ def bem_periodic_sphere(material, *, radius, load, speed, cells, cell_radii=8.0)
     x = (np.arange(n) - n // 2) * dx
     X, Y = np.meshgrid(x, x, indexing="ij")
     surface = bem.surfaces.from_heights(-(X**2 + Y**2) / (2 * radius), n * dx)
-    res = bem.solve(surface, material, speed=speed, load=load)
+    res = bem.solve(surface, material, speed=speed, load=load, raise_on_failure=False)
+    if not res.success:
+        return _failed(res, f"{n}^2 cells: {res.message}")
     line = res.pressure[:, n // 2]
     trail, lead = sampled_edges(x, line)
-    return dict(x=x, pressure=line, spacing=dx, trailing_edge=trail, leading_edge=lead,
+    return dict(success=True, x=x, pressure=line, spacing=dx, trailing_edge=trail, leading_edge=lead,
                 friction=res.friction, peak_pressure=float(res.pressure.max()), result=res,
                 surface=surface, field=res.pressure, X=X, Y=Y, origin=(float(x[0]), float(x[0])),
                 detail=f"{n}^2 cells, dx = {dx:.3e} m")

@@ -64,6 +64,8 @@ def run_sphere(*, quick, vtk_dir, root):
         label = "rest" if s == 0 else f"s={s:g}"
         b, cost = metrics.measure(bem_periodic_sphere, material, radius=R, load=P, speed=V, cells=cfg["cells"])
         out.cost("bem-periodic", label, cost, b["detail"])
+        if not out.converged("bem-periodic", label, b):
+            continue
         sols.append(b)
         labels.append(s)
         if s == 0:
@@ -91,7 +93,7 @@ def run_sphere(*, quick, vtk_dir, root):
     out.sweeps.append(Sweep("low-speed friction", "s = V lambda / a0", "friction coefficient", {
         "asymptote (V/R) E0 C lambda": (np.array(cfg["s"]), np.array([
             low_speed_friction(material, radius=R, speed=s * _a0(material) / lam) for s in cfg["s"]])),
-        "bem-periodic": (np.array(cfg["s"]), np.array([b["friction"] for b in sols[1:]])),
+        "bem-periodic": (np.array(labels[1:]), np.array([b["friction"] for b in sols[1:]])),
     }, logy=True))
     if vtk_dir is not None:
         out.files += write_bem_sweep(vtk_dir / "bem", root, sols, labels)
