@@ -23,6 +23,8 @@ __all__ = ["DEFAULT", "compare", "write", "REL", "FLOOR"]
 
 DEFAULT = Path(__file__).resolve().parent / "baselines" / "quick.json"
 REL, FLOOR, ABS = 0.05, 0.01, 1e-12
+RULE = ("|value - baseline| <= max(rel * |baseline|, floor_of_tolerance * tolerance) (abs for unjudged checks); "
+        "regenerate: viscobem validate --quick --update-baselines --out DIR")
 
 
 def _values(record):
@@ -37,7 +39,7 @@ def write(record, path=DEFAULT, command=""):
                                 machine=env["machine"], python=env["python"], numpy=env["numpy"],
                                 scipy=env["scipy"], command=command, seconds=record["seconds"],
                                 case_seconds={n: c["seconds"] for n, c in record["cases"].items()}),
-                comparison=dict(rel=REL, floor_of_tolerance=FLOOR, abs=ABS, doc=__doc__.split("\n\n")[2]),
+                comparison=dict(rel=REL, floor_of_tolerance=FLOOR, abs=ABS, rule=RULE),
                 values=_values(record))
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -65,10 +65,11 @@ def bin_average(x, p, edges):
     as 0 (contact pressures vanish there).
     """
     x, p, edges = np.asarray(x, float), np.asarray(p, float), np.asarray(edges, float)
-    pts = np.union1d(x, edges)
-    vals = np.interp(pts, x, p, left=0.0, right=0.0)
+    inside = np.clip(edges, x[0], x[-1])  # zero outside the samples: integrate over the overlap only
+    pts = np.union1d(x, inside)
+    vals = np.interp(pts, x, p)
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (vals[1:] + vals[:-1]) * np.diff(pts))])
-    at = np.interp(edges, pts, cum)
+    at = np.interp(inside, pts, cum)
     return np.diff(at) / np.diff(edges)
 
 

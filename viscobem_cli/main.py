@@ -62,15 +62,19 @@ def _cmd_validate(args):
     if args.update_baselines and (not args.quick or args.case):
         raise InputError("--update-baselines needs --quick and every case (no --case): the baseline file "
                          "holds the whole quick set")
+    baseline_path = args.baseline or baselines.DEFAULT
+    compare_with = args.quick and not (args.update_baselines or args.no_baseline)
+    if compare_with and not Path(baseline_path).exists():
+        raise InputError(f"baseline {baseline_path} does not exist; pass --no-baseline or create it with "
+                         f"--update-baselines")
     print(f"viscobem validate: {len(names)} case(s), {'quick' if args.quick else 'full'} set; writing to {args.out}")
     record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk,
                        progress=not args.no_progress)
     summary = record["summary"]
     comparison = None
-    baseline_path = args.baseline or baselines.DEFAULT
-    if args.quick and not args.update_baselines and Path(baseline_path).exists():
+    if compare_with:
         comparison = baselines.compare(record, baseline_path)
-    paths = write_reports(record, args.out, comparison)
+    paths = write_reports(record, args.out, comparison, with_plots=not args.no_plots)
     for name, case in record["cases"].items():
         judged = [k for k in case["checks"] if k["judged"]]
         print(f"  {name:24s} {case['status'].upper():6s} {sum(k['passed'] for k in judged):3d}/{len(judged):<3d} "
@@ -123,7 +127,9 @@ def build_parser():
     val.add_argument("--out", default="validation-out", help="output folder (default: validation-out)")
     val.add_argument("--no-vtk", action="store_true", help="do not write VTK files")
     val.add_argument("--no-progress", action="store_true", help="no progress bar")
+    val.add_argument("--no-plots", action="store_true", help="report.html without figures (faster)")
     val.add_argument("--baseline", default=None, help="baseline file (default: validation/baselines/quick.json)")
+    val.add_argument("--no-baseline", action="store_true", help="with --quick: do not compare with the baselines")
     val.add_argument("--update-baselines", action="store_true",
                      help="with --quick: store this run's numbers as the new baselines")
     val.set_defaults(func=_cmd_validate)
