@@ -162,6 +162,22 @@ def test_bad_case_name_is_an_input_error(tmp_path, capsys):
     assert main(["validate", "--update-baselines", "--case", "westergaard", "--out", str(tmp_path)]) == 2
 
 
+def test_a_crashing_case_is_reported_and_the_others_still_run(tmp_path, monkeypatch, capsys):
+    from validation.cases import Case
+
+    def boom(**_):
+        raise RuntimeError("solver exploded")
+
+    monkeypatch.setitem(CASES, "westergaard", Case("westergaard", "t", "d", ("exact",), "exact", boom))
+    status = main(["validate", "--quick", "--no-baseline", "--no-progress", "--no-vtk", "--no-plots",
+                   "--case", "westergaard", "--case", "elastic_rough_dense", "--out", str(tmp_path)])
+    assert status == 1 and "RuntimeError: solver exploded" in capsys.readouterr().out
+    record = json.loads((tmp_path / "report.json").read_text())
+    assert record["cases"]["westergaard"]["status"] == "error"
+    assert record["cases"]["elastic_rough_dense"]["status"] == "passed"
+    assert "solver exploded" in (tmp_path / "report.html").read_text()
+
+
 def test_baselines_round_trip(cheap_run, tmp_path):
     _, _, record = cheap_run
     path = baselines.write(record, tmp_path / "b.json", command="test")
