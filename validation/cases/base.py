@@ -92,7 +92,7 @@ class CaseOutput:
         self.checks.append(Check(metric, solver, str(label), float(value),
                                  None if tolerance is None else float(tolerance), why))
 
-    def converged(self, solver, label, sol, rtol=1e-8):
+    def converged(self, solver, label, sol, rtol=1e-10):
         """Record a failed solve as a failed check; True when ``sol`` can be compared."""
         if sol.get("success", True):
             return True
