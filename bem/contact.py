@@ -123,6 +123,8 @@ def _max_phase(op):
     """Largest phase ``|arg a_q|`` of the operator's symbol (0 when symmetric)."""
     if op.is_symmetric:
         return 0.0
+    if hasattr(op, "max_phase"):  # operators without a Fourier symbol (isolated half-space)
+        return float(op.max_phase())
     return float(np.max(np.abs(np.angle(op.symbol))))
 
 
@@ -156,8 +158,11 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
     Parameters
     ----------
     op : PeriodicHalfSpace or compatible
-        Provides ``displacement(p)``, ``pressure_from_displacement(u)``,
-        ``self_influence()`` and ``is_symmetric``.
+        Provides ``displacement(p)``, ``self_influence()``, ``is_symmetric``,
+        ``symmetric_part()``, and either ``pressure_from_displacement(u)`` (exact
+        full-contact inverse, used for the first iterate) or
+        ``initial_pressure(ht, mean_pressure=, approach=)``; optionally ``max_phase()``
+        instead of a Fourier ``symbol``.
     heights : ndarray
         Indenter heights (m), positive toward the half-space.
     mean_pressure : float, optional
@@ -199,6 +204,9 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
         sym = _solve_contact(op.symmetric_part(), heights, mean_pressure=mean_pressure, approach=approach,
                              rtol=max(rtol, 1e-3), maxiter=maxiter, raise_on_failure=False)
         initial, matvecs = sym.pressure, sym.matvecs
+    if initial is None and hasattr(op, "initial_pressure"):
+        # operators without an exact full-contact inverse supply their own first iterate
+        initial = op.initial_pressure(ht, mean_pressure=mean_pressure, approach=approach)
     if initial is not None:
         p = np.maximum(np.asarray(initial, dtype=float), 0.0)
     elif load_control:

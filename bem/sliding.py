@@ -9,6 +9,13 @@ grid); ``friction_eq6 = -(1/F_N) ∫ p dh/dx dA`` (the seed's eq. 6) uses the sp
 derivative of the heights. They coincide in full contact and converge together as the
 grid resolves the contact spots. ``dissipated_power = friction * F_N * speed`` (W, or
 W/m for profiles).
+
+Isolated contacts (``periodic=False``, :mod:`bem.isolated`): the domain is the array and
+pressure outside it is zero. ``friction`` is again the dissipation form, exact for the
+piecewise-constant element pressures (``-sum_j p_j [u(x_j + d/2) - u(x_j - d/2)]`` with the
+exact displacement at element edges, see ``IsolatedHalfSpace.dissipation_integral``), so it
+is non-negative on any grid; ``friction_eq6`` uses central differences of the heights
+between element centres (one-sided at the domain's ends, where the pressure vanishes).
 """
 import logging
 import time
@@ -20,6 +27,7 @@ from . import fft
 from .checks import check_array, check_int, check_positive
 from .contact import solve_contact
 from .errors import ConvergenceError, InputError
+from .isolated import IsolatedHalfSpace
 from .material import Material
 from .periodic import PeriodicHalfSpace
 from .surfaces import Surface
@@ -41,15 +49,18 @@ class SlidingResult:
     pressure : ndarray
         Contact pressure (Pa), >= 0.
     displacement : ndarray
-        Normal surface displacement (m, positive into the solid), zero mean (the periodic
-        half-space has no defined mean displacement; the approach carries it).
+        Normal surface displacement (m, positive into the solid). Periodic cells: zero mean
+        (the periodic half-space has no defined mean displacement; the approach carries it).
+        Isolated 2-D contacts: absolute (zero at infinity); isolated profiles: up to the
+        constant of plane strain (see :mod:`bem.isolated`).
     gap : ndarray
         ``displacement - (h - max(h) + approach)`` (m), >= 0, zero in contact.
     approach : float
-        Rigid approach from first touch (m), relative to the mean plane of the deformed
-        surface.
+        Rigid approach from first touch (m): relative to the mean plane of the deformed
+        surface on periodic cells, to the undeformed surface far away for isolated 2-D
+        contacts, and with the displacement's constant for isolated profiles.
     contact_fraction : float
-        Fraction of the cell in contact (``pressure > 0``).
+        Fraction of the cell (isolated contacts: of the domain) in contact (``pressure > 0``).
     friction, friction_eq6 : float
         Viscoelastic friction coefficient, dissipation form and eq. 6 (see module doc).
     dissipated_power : float
@@ -97,12 +108,14 @@ def _material_key(material):
     return (material.E0, material.nu, material.moduli.tobytes(), material.relaxation_times.tobytes())
 
 
-def operator_for(surface, material, speed):
-    """The (cached) periodic response operator of this grid, material and speed."""
-    key = (surface.shape, surface.length, _material_key(material), float(speed))
+def operator_for(surface, material, speed, periodic=True):
+    """The (cached) response operator of this grid, material and speed: periodic cell or
+    isolated domain (:class:`~bem.isolated.IsolatedHalfSpace`)."""
+    key = (bool(periodic), surface.shape, surface.length, _material_key(material), float(speed))
     op = _operators.get(key)
     if op is None:
-        op = PeriodicHalfSpace(surface.shape, surface.length, material, speed)
+        kind = PeriodicHalfSpace if periodic else IsolatedHalfSpace
+        op = kind(surface.shape, surface.length, material, speed)
         if len(_operators) >= _CACHE_SIZE:
             _operators.pop(next(iter(_operators)))
         _operators[key] = op
@@ -127,9 +140,35 @@ def _check_inputs(surface, material, speed, load, approach, rtol):
     return surface, speed, load, approach, rtol
 
 
+_ISOLATED_METHODS = ("auto", "uniform", "adaptive")
+_PERIODIC_METHODS = ("auto", "active-set")
+
+
+def _choose_isolated_method(surface, material, *, speed, load, rtol):
+    """The isolated-contact method that ``method="auto"`` selects: ``"uniform"`` or ``"adaptive"``.
+
+    Always the uniform DC-FFT grid, the faster one in ``benchmarks/isolated.py`` (tables:
+    ``benchmarks/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
+    dates and machine load, 2 shared cores at load 6-8, bem/ frozen for each run; figures
+    ``isolated_pareto*.png``). Problems: rolling cylinder vs Hunter and sliding sphere vs a
+    Richardson-extrapolated reference, each at ``V lambda / a0 = 0.3, 1, 5``, plus the sphere
+    on domains 12 and 24 contact radii wide; error = max of the friction and peak-pressure
+    errors. At equal fine grid both reach the same peak-pressure error (the same collocation
+    inside the contact) and the uniform grid is faster or equal everywhere (adaptive/uniform
+    time: cylinder 0.94-171, sphere 3-27, wide domains 1.0-6.6). At equal error the uniform
+    grid is faster in 55 of the 65 (problem, tolerance 1e-1..1e-5) cells reached; of the
+    others, 7 are the fast cylinder at 128 cells where both take 0.05 s (3 ms apart, timing
+    noise) and 3 are wide sphere domains, within noise or owed to the adaptive solver's
+    friction evaluation (its slope-matrix dissipation form converges faster), not its mesh.
+    Nothing here depends on ``speed``, ``load``, ``rtol`` or the material; the arguments are
+    kept for a future rule.
+    """
+    return "uniform"
+
+
 def solve(surface, material, *, speed, load=None, approach=None, periodic=True, method="auto",
-          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True):
-    """Steady sliding of a rigid surface over a viscoelastic half-space (periodic cell).
+          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, **adaptive_options):
+    """Steady sliding of a rigid surface over a viscoelastic half-space.
 
     Parameters
     ----------
@@ -144,10 +183,14 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     approach : float, optional
         Displacement control instead of ``load``: rigid approach (m) from first touch.
     periodic : bool
-        Only ``True`` (periodic cell) is available in this version.
-    method : {"auto", "active-set"}
-        Contact algorithm; both select the primal–dual active-set solver with CG (elastic)
-        or GMRES (viscoelastic) inner solves.
+        ``True``: periodic cell (:mod:`bem.periodic`). ``False``: isolated contact on a
+        half-space, the array being the whole loaded domain (:mod:`bem.isolated`), e.g.
+        :func:`bem.surfaces.sphere` or :func:`bem.surfaces.cylinder`.
+    method : str
+        Periodic cells: ``"auto"`` or ``"active-set"`` (the same primal–dual active-set
+        solver with CG (elastic) or GMRES (viscoelastic) inner solves). Isolated contacts:
+        ``"uniform"`` (DC-FFT on the uniform grid), ``"adaptive"`` (non-uniform mesh,
+        :func:`bem.adaptive.solve_adaptive`, given ``adaptive_options``) or ``"auto"``.
     rtol : float
         Tolerance on the complementarity residual (see :mod:`bem.contact`).
     maxiter : int
@@ -163,35 +206,45 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     SlidingResult
     """
     surface, speed, load, approach, rtol = _check_inputs(surface, material, speed, load, approach, rtol)
-    if periodic is not True:
-        raise InputError("periodic must be True: this version solves periodic cells only "
-                         "(isolated contacts are a separate solver)")
-    if method not in ("auto", "active-set"):
-        raise InputError(f"method must be one of 'auto', 'active-set', got {method!r}")
+    if not isinstance(periodic, (bool, np.bool_)):
+        raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {periodic!r}")
+    methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
+    if method not in methods:
+        raise InputError(f"method must be one of {', '.join(repr(m) for m in methods)} for "
+                         f"periodic={bool(periodic)}, got {method!r}")
+    if adaptive_options and method != "adaptive":
+        raise InputError(f"unexpected keyword(s) {sorted(adaptive_options)}: only method='adaptive' "
+                         f"takes extra options")
+    if not periodic and method == "auto":
+        method = _choose_isolated_method(surface, material, speed=speed, load=load, rtol=rtol)
+    if method == "adaptive":
+        if load is None:
+            raise InputError("approach (displacement control) is not available with method='adaptive'; "
+                             "give load (N, or N/m for profiles)")
+        from .adaptive import solve_adaptive
+
+        return solve_adaptive(surface, material, speed=speed, load=load, rtol=rtol, maxiter=maxiter,
+                              raise_on_failure=raise_on_failure, **adaptive_options)
     maxiter = check_int("maxiter", maxiter, 1)
     if initial is not None:
         initial = check_array("initial", initial)
         if initial.shape != surface.shape:
             raise InputError(f"initial must have the heights' shape {surface.shape}, got {initial.shape}")
-    if approach is not None:
+    if approach is not None and periodic:
         limit = float(surface.heights.max() - surface.heights.mean())
         if not approach < limit:
             raise InputError(f"approach must be in (0, {limit!r}) m: at max(h) - mean(h) the cell is in full "
                              f"contact and the load is unbounded (zero-mean displacement), got {approach!r}")
     t0 = time.perf_counter()
-    op = operator_for(surface, material, speed)
+    op = operator_for(surface, material, speed, periodic)
     area = op.area
     sol = solve_contact(op, surface.heights, mean_pressure=None if load is None else load / area,
                         approach=approach, rtol=rtol, maxiter=maxiter, initial=initial,
                         raise_on_failure=False)
     p = sol.pressure
     total = float(p.mean() * area)
-    pq = fft.forward(p)
     if total > 0:
-        friction = op.dissipation_integral(pq) / total
-        dhdx = fft.inverse(1j * fft.wavevectors(surface.shape, surface.length)[0]
-                           * fft.forward(surface.heights), surface.shape)
-        friction_eq6 = float(-np.mean(p * dhdx) * area / total)
+        friction, friction_eq6 = (_friction_periodic if periodic else _friction_isolated)(op, surface, p, total)
     else:
         friction = friction_eq6 = 0.0
     result = SlidingResult(
@@ -205,6 +258,21 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     if not sol.success and raise_on_failure:
         raise ConvergenceError(f"speed {speed!r} m/s: {sol.message}", result)
     return result
+
+
+def _friction_periodic(op, surface, p, total):
+    """Dissipation form (exact in Fourier space) and eq. 6 (spectral dh/dx) on a periodic cell."""
+    friction = op.dissipation_integral(fft.forward(p)) / total
+    dhdx = fft.inverse(1j * fft.wavevectors(surface.shape, surface.length)[0]
+                       * fft.forward(surface.heights), surface.shape)
+    return friction, float(-np.mean(p * dhdx) * op.area / total)
+
+
+def _friction_isolated(op, surface, p, total):
+    """Dissipation form (exact for piecewise-constant pressure) and eq. 6 (central differences)."""
+    friction = op.dissipation_integral(p) / total
+    dhdx = np.gradient(surface.heights, op.spacing, axis=0)
+    return friction, float(-np.sum(p * dhdx) * op.spacing ** surface.ndim / total)
 
 
 @dataclass(frozen=True, eq=False)
@@ -232,7 +300,7 @@ class FrictionCurve:
 
 
 def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
-                   progress=False, callback=None):
+                   progress=False, callback=None, periodic=True, method="auto"):
     """Solve at each speed; warm-start each from its neighbour (in increasing speed).
 
     Parameters
@@ -247,6 +315,9 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
         ``callback(index, speed, result_or_None, message)`` after each point, e.g. to
         write it to disk at once; a point that fails to converge is reported with
         ``None`` and the sweep goes on.
+    periodic, method
+        As in :func:`solve` (``periodic=False``: isolated contact). The warm start is
+        skipped for ``method="adaptive"`` (its mesh differs from the surface's grid).
 
     Returns
     -------
@@ -268,7 +339,8 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
                   desc="friction curve", unit="speed"):
         try:
             res = solve(surface, material, speed=speeds[i], load=load, rtol=rtol, maxiter=maxiter,
-                        initial=previous if warm_start else None)
+                        initial=previous if warm_start and method != "adaptive" else None,
+                        periodic=periodic, method=method)
         except ConvergenceError as err:
             res, messages[i] = None, str(err)
             log.warning("%s", err)

@@ -2,6 +2,7 @@
 
     viscobem run [SCENE.toml] [--out DIR]     run a study (the seed paper's by default)
     viscobem bench periodic [--quick] --out DIR   benchmark the periodic BEM
+    viscobem bench isolated [--quick] --out DIR   isolated contacts: uniform grid vs adaptive mesh
     viscobem scene                            print the built-in default scene
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
@@ -117,7 +118,7 @@ def build_parser():
     scene = sub.add_parser("scene", help="print the built-in default scene (a template)")
     scene.set_defaults(func=_cmd_scene)
     bench = sub.add_parser("bench", help="run a benchmark")
-    bench.add_argument("name", choices=["periodic", "fem"], help="which benchmark")
+    bench.add_argument("name", choices=["periodic", "fem", "isolated"], help="which benchmark")
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)

@@ -1,4 +1,5 @@
-"""PNG plots of a study: the friction curve and a pressure map (matplotlib, Agg)."""
+"""PNG plots of a study: the friction curve and a pressure map, or for isolated indenters
+pressure maps at three speeds and contact outlines (matplotlib, Agg)."""
 from pathlib import Path
 
 import numpy as np
@@ -58,6 +59,62 @@ def pressure_map(surface, result, xi, path):
     plt.close(fig)
 
 
+def _three_speeds(fields):
+    """Indices of the slowest point, the friction peak and the fastest point (distinct, sorted)."""
+    keys = sorted(fields, key=lambda k: fields[k].speed)
+    peak = max(fields, key=lambda k: fields[k].friction)
+    return sorted({keys[0], peak, keys[-1]}, key=lambda k: fields[k].speed)
+
+
+def indenter_maps(scene, fields, out):
+    """Isolated indenter: pressure at three speeds (slowest, friction peak, fastest) and the
+    contact outlines of every computed speed. Returns the file names written."""
+    plt = _pyplot()
+    surface = scene.surface
+    x = surface.x * 1e3
+    picks = _three_speeds(fields)
+    if surface.ndim == 1:
+        fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+        for k in picks:
+            r = fields[k]
+            ax.plot(x, r.pressure / 1e6, label=rf"$\xi$ = {scene.xi[k]:.3g}, $\mu$ = {r.friction:.3g}")
+        ax.set_xlabel("x (mm), sliding toward +x")
+        ax.set_ylabel("pressure (MPa)")
+        ax.legend(fontsize=8)
+        ax.set_title(scene.title, fontsize=9)
+        fig.savefig(out / "pressure_profiles.png", dpi=120)
+        plt.close(fig)
+        return ["pressure_profiles.png"]
+    ext = [x[0] - surface.spacing * 5e2, x[-1] + surface.spacing * 5e2] * 2
+    fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.0), constrained_layout=True,
+                             squeeze=False)
+    for ax, k in zip(axes[0], picks):
+        r = fields[k]
+        im = ax.imshow(r.pressure.T / 1e6, origin="lower", extent=ext, cmap="magma", interpolation="nearest")
+        ax.contour(x, x, (r.pressure > 0).T.astype(float), levels=[0.5], colors="c", linewidths=0.8)
+        fig.colorbar(im, ax=ax, label="pressure (MPa)", shrink=0.8)
+        ax.set_xlabel("x (mm), sliding toward +x")
+        ax.set_ylabel("y (mm)")
+        ax.set_title(rf"$\xi$ = {scene.xi[k]:.3g}: $\mu$ = {r.friction:.3g}", fontsize=9)
+    fig.savefig(out / "pressure_maps.png", dpi=120)
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(5.2, 4.6), constrained_layout=True)
+    keys = sorted(fields, key=lambda k: fields[k].speed)
+    colours = plt.cm.viridis(np.linspace(0, 1, len(keys)))
+    for c, k in zip(colours, keys):
+        ax.contour(x, x, (fields[k].pressure > 0).T.astype(float), levels=[0.5], colors=[c], linewidths=1.0)
+    sm = plt.cm.ScalarMappable(cmap="viridis", norm=plt.matplotlib.colors.LogNorm(
+        vmin=scene.xi[keys[0]], vmax=max(scene.xi[keys[-1]], scene.xi[keys[0]] * 1.0001)))
+    fig.colorbar(sm, ax=ax, label=r"$\xi = v\,\tau / L$")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm), sliding toward +x")
+    ax.set_ylabel("y (mm)")
+    ax.set_title("contact outlines", fontsize=9)
+    fig.savefig(out / "contact_outlines.png", dpi=120)
+    plt.close(fig)
+    return ["pressure_maps.png", "contact_outlines.png"]
+
+
 def write_all(scene, curve, fields, out):
     """Write the plots of a study; return the file names."""
     out = Path(out)
@@ -65,7 +122,9 @@ def write_all(scene, curve, fields, out):
     if scene.outputs["friction_curve"] and np.any(curve.success):
         friction_curve(scene, curve, out / "friction_curve.png")
         names.append("friction_curve.png")
-    if fields:
+    if fields and not scene.periodic:
+        names += indenter_maps(scene, fields, out)
+    elif fields:
         # the pressure map at the friction peak, where the contact is most distorted
         i = max(fields, key=lambda k: fields[k].friction)
         pressure_map(scene.surface, fields[i], scene.xi[i], out / "pressure_map.png")

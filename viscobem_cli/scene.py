@@ -7,15 +7,19 @@ Schema (SI units; unknown keys are an error that lists the valid ones)::
                  |  E0, moduli, times (Prony)  |  E0, compliances, times (creep)
                  |  dma = "file.csv" (columns: frequency, storage E' (Pa), loss E'' (Pa);
                     dma_frequency_unit = "rad/s" | "Hz"; dma_terms_per_decade = 2.0)
-    [surface]    kind = "self_affine" | "sinusoid" | "file", length (m), n, and per kind:
+    [surface]    kind = "self_affine" | "sinusoid" | "file" | "sphere" | "cylinder", length (m),
+                 n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
                               anisotropy, dim (1 or 2)
                  sinusoid:    amplitude (m), wavelength (m), dim, direction
                  file:        path (.npy/.txt/.csv, relative to the scene file), unit
+                 sphere, cylinder: radius (m), exact (default false: paraboloid); an isolated
+                              indenter centred in a domain of side length (2-D map / 1-D profile)
     [loading]    load (N; N/m for 1-D profiles) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced, xi = v tau / L; tau = xi_time or the
                  material's longest creep time)
-    [solver]     rtol, maxiter, warm_start
+    [solver]     rtol, maxiter, warm_start, periodic (default false for sphere and
+                 cylinder, true otherwise), method ("auto"; isolated: "uniform" | "adaptive")
     [outputs]    friction_curve, fields, plots, vtk  (booleans)
 """
 import sys
@@ -37,13 +41,16 @@ SCHEMA = {
     "material": {"nu", "E", "E0", "E_inf", "creep_time", "relaxation_time", "moduli", "times",
                  "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade"},
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
-                "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit"},
+                "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
+                "radius", "exact"},
     "loading": {"load", "speeds", "xi", "xi_time"},
-    "solver": {"rtol", "maxiter", "warm_start"},
+    "solver": {"rtol", "maxiter", "warm_start", "periodic", "method"},
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd"},
 }
-SURFACE_KINDS = ("self_affine", "sinusoid", "file")
-DEFAULT_SCENE = Path(__file__).with_name("scenes") / "seed.toml"
+SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder")
+INDENTER_KINDS = ("sphere", "cylinder")  # isolated indenters: periodic = false by default
+SCENE_DIR = Path(__file__).with_name("scenes")
+DEFAULT_SCENE = SCENE_DIR / "seed.toml"
 
 
 @dataclass(frozen=True)
@@ -60,6 +67,8 @@ class Scene:
     rtol: float = 1e-8
     maxiter: int = 100
     warm_start: bool = True
+    periodic: bool = True
+    method: str = "auto"
     outputs: dict = field(default_factory=dict)
     source: str = ""
     raw: dict = field(default_factory=dict, repr=False)
@@ -113,8 +122,7 @@ def _surface(t, base):
     _check_keys(t, "surface")
     kind = t.get("kind")
     if kind not in SURFACE_KINDS:
-        raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)} (periodic cells), "
-                         f"got {kind!r}")
+        raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)}, got {kind!r}")
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
@@ -125,6 +133,11 @@ def _surface(t, base):
     if kind == "sinusoid":
         args = {k: t[k] for k in ("amplitude", "wavelength", "dim", "direction") if k in t}
         return surfaces.sinusoid(t["n"], t["length"], **args)
+    if kind in INDENTER_KINDS:
+        if "radius" not in t:
+            raise InputError(f"[surface] radius (m) is required for kind = {kind!r}")
+        make = surfaces.sphere if kind == "sphere" else surfaces.cylinder
+        return make(radius=t["radius"], n=t["n"], length=t["length"], exact=t.get("exact", False))
     if "path" not in t:
         raise InputError("[surface] path is required for kind = 'file'")
     return surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m"))
@@ -167,6 +180,14 @@ def parse(text, *, base=Path("."), source="<string>"):
     speeds, xi, tau = _speeds(raw["loading"], material, surface)
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
+    periodic = solver.get("periodic", raw["surface"].get("kind") not in INDENTER_KINDS)
+    if not isinstance(periodic, bool):
+        raise InputError(f"[solver] periodic must be true or false, got {periodic!r}")
+    method = solver.get("method", "auto")
+    valid = ("auto", "active-set") if periodic else ("auto", "uniform", "adaptive")
+    if method not in valid:
+        raise InputError(f"[solver] method must be one of {', '.join(map(repr, valid))} with periodic = "
+                         f"{str(periodic).lower()}, got {method!r}")
     outputs = {"friction_curve": True, "fields": True, "plots": True, "vtk": False,
                "anisotropy": False, "contact_psd": False}
     _check_keys(raw.get("outputs", {}), "outputs")
@@ -180,12 +201,16 @@ def parse(text, *, base=Path("."), source="<string>"):
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
                  load=float(raw["loading"]["load"]), speeds=speeds, xi=xi, xi_time=tau,
                  rtol=float(solver.get("rtol", 1e-8)), maxiter=int(solver.get("maxiter", 400)),
-                 warm_start=bool(solver.get("warm_start", True)), outputs=outputs, source=source, raw=raw)
+                 warm_start=bool(solver.get("warm_start", True)), periodic=periodic, method=method,
+                 outputs=outputs, source=source, raw=raw)
 
 
 def load(path=None):
-    """Read a scene file (the built-in seed study when ``path`` is None)."""
+    """Read a scene file (the built-in seed study when ``path`` is None); a bare name such as
+    ``"sphere"`` that is not a file selects the built-in scene ``scenes/<name>.toml``."""
     path = Path(path) if path is not None else DEFAULT_SCENE
+    if not path.exists() and path.suffix == "" and (SCENE_DIR / f"{path.name}.toml").exists():
+        path = SCENE_DIR / f"{path.name}.toml"
     try:
         text = path.read_text()
     except OSError as err:

@@ -55,7 +55,9 @@ def run_scene(scene, out_dir, *, progress=True):
         "conventions": "heights positive toward the half-space; the surface slides in +x (axis 0); "
                        "friction = dissipation form, friction_eq6 = -(1/F_N) int p dh/dx dA",
         "material": _material_record(scene.material), "surface": _surface_record(scene.surface),
-        "load": scene.load, "xi_time": scene.xi_time, "solver": {"rtol": scene.rtol, "maxiter": scene.maxiter},
+        "load": scene.load, "xi_time": scene.xi_time,
+        "solver": {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic,
+                   "method": scene.method},
         "stages": {}, "complete": False,
     }
     n = scene.speeds.size
@@ -84,7 +86,8 @@ def run_scene(scene, out_dir, *, progress=True):
     t0 = time.perf_counter()
     fc = bem.friction_curve(scene.surface, scene.material, speeds=scene.speeds, load=scene.load,
                             rtol=scene.rtol, maxiter=scene.maxiter, warm_start=scene.warm_start,
-                            progress=progress, callback=save_point)
+                            progress=progress, callback=save_point, periodic=scene.periodic,
+                            method=scene.method)
     record["stages"]["friction_curve"] = time.perf_counter() - t0
     written = ["results.json"]
     if scene.outputs["fields"] and fields:
