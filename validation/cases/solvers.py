@@ -16,7 +16,7 @@ from scipy.fft import next_fast_len
 from validation.metrics import sampled_edges
 
 __all__ = ["hertz_line_half_width", "bem_periodic_cylinder", "fem_cylinder", "bem_periodic_sphere",
-           "cylinder_cell"]
+           "cylinder_cell", "bem_isolated_cylinder", "bem_isolated_sphere"]
 
 
 def hertz_line_half_width(E, nu, radius, load):
@@ -120,3 +120,51 @@ def bem_periodic_sphere(material, *, radius, load, speed, cells, cell_radii=8.0)
                 friction=res.friction, peak_pressure=float(res.pressure.max()), result=res,
                 surface=surface, field=res.pressure, X=X, Y=Y, origin=(float(x[0]), float(x[0])),
                 detail=f"{n}^2 cells, dx = {dx:.3e} m")
+
+
+def _isolated(surface, material, load, speed, method, dx, line, origin):
+    import bem
+
+    res = bem.solve(surface, material, speed=speed, load=load, periodic=False, method=method, rtol=RTOL,
+                    raise_on_failure=False)
+    n = surface.n
+    if not res.success:
+        return _failed(res, f"{method}, n = {n}: {res.message}")
+    x = surface.x
+    p = res.pressure if res.pressure.ndim == 1 else line(res.pressure)
+    trail, lead = sampled_edges(x, p)
+    return dict(success=True, x=x, pressure=p, spacing=dx, trailing_edge=trail, leading_edge=lead,
+                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res, surface=surface,
+                field=res.pressure, origin=origin(x), detail=f"{method}, n = {n}, dx = {dx:.3e} m")
+
+
+def bem_isolated_cylinder(material, *, radius, load, speed, cells, method):
+    """The isolated 1-D BEM (``periodic=False``, ``method`` "uniform" or "adaptive") on a domain of
+    four relaxed half-widths centred on the axis (the contact stays within ``[-a_0, a_0]``), cells
+    of ``a_inf / cells``, a multiple of 8 of them (three adaptive levels)."""
+    import bem
+
+    a0 = hertz_line_half_width(material.E0, material.nu, radius, load)
+    dx = hertz_line_half_width(material.E_inf, material.nu, radius, load) / cells
+    n = int(np.ceil(4 * a0 / dx / 8)) * 8
+    surface = bem.surfaces.cylinder(radius=radius, n=n, length=n * dx)
+    return _isolated(surface, material, load, speed, method, dx, None, lambda x: (float(x[0]), 0.0))
+
+
+def bem_isolated_sphere(material, *, radius, load, speed, cells, method):
+    """The isolated 2-D BEM on a square of side three relaxed Hertz radii centred on the axis,
+    cells of ``a_inf / cells`` (a multiple of 8 per side). ``pressure`` is the row of cells next to
+    the line ``y = 0`` (cell centres at ``y = dx/2``: the comparison uses the exact pressure there)."""
+    import bem
+
+    es = 1.0 - material.nu**2
+    a0 = (3 * load * radius * es / (4 * material.E0)) ** (1 / 3)
+    dx = (3 * load * radius * es / (4 * material.E_inf)) ** (1 / 3) / cells
+    n = int(np.ceil(3 * a0 / dx / 8)) * 8
+    surface = bem.surfaces.sphere(radius=radius, n=n, length=n * dx)
+    out = _isolated(surface, material, load, speed, method, dx, lambda f: f[:, n // 2],
+                    lambda x: (float(x[0]), float(x[0])))
+    if out["success"]:
+        X, Y = np.meshgrid(surface.x, surface.x, indexing="ij")
+        out.update(X=X, Y=Y, line_y=float(surface.x[n // 2]))
+    return out
