@@ -6,7 +6,6 @@ grid, for the FEM .vtu files) through the CLI in-process; the whole quick set ag
 stored baselines is ``pytest -m slow`` (about two minutes).
 """
 import json
-import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -47,16 +46,30 @@ def test_rel_l2_uses_the_trapezoid_rule_on_any_spacing():
     assert metrics.rel_max(ref * 1.5, ref) == pytest.approx(0.5)
 
 
-def test_measure_sees_memory_held_during_the_call():
-    def hold():
-        a = np.ones(6_000_000)  # 46 MiB, touched
-        time.sleep(0.15)  # several sampling intervals
-        return a.sum()
+_MEASURE = """
+import time, numpy as np
+from validation.metrics import measure
+def hold():
+    a = np.ones(6_000_000)  # 46 MiB, touched
+    time.sleep(0.15)  # several sampling intervals
+    return a.sum()
+value, cost = measure(hold)
+print(value, cost.seconds, cost.peak_mib)
+"""
 
-    value, cost = metrics.measure(hold)
-    assert value == 6_000_000
-    assert cost.seconds >= 0.15
-    assert cost.peak_mib > 30  # resident growth of the 46 MiB array, sampled every 20 ms
+
+def test_measure_sees_memory_held_during_the_call():
+    """In a fresh interpreter (the RSS growth of a long-lived process misses pages it already
+    holds, as documented): the 46 MiB array shows up, sampled every 20 ms."""
+    import subprocess
+    import sys
+
+    root = Path(__file__).resolve().parent.parent
+    out = subprocess.run([sys.executable, "-c", _MEASURE], capture_output=True, text=True, check=True,
+                         cwd=root, env={"PYTHONPATH": str(root), "PATH": "/usr/bin:/bin"}).stdout.split()
+    value, seconds, peak = (float(v) for v in out)
+    assert value == 6_000_000 and seconds >= 0.15
+    assert 30 < peak < 200
 
 
 # ------------------------------------------------------------------ the command
