@@ -8,13 +8,16 @@
                                               skipping; regenerates README's bench table
     viscobem bench periodic|fem|isolated [--quick] --out DIR   one solver's detailed benchmark
     viscobem scene                            print the built-in default scene
+    viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
-and exits with status 2; a sweep with points that did not converge exits with 1.
+and exits with status 2; a sweep with points that did not converge exits with 1, and so
+does a validation run in which any case misses a tolerance or a baseline.
 """
 import argparse
 import logging
 import sys
+from pathlib import Path
 
 from bem.errors import ConvergenceError, InputError
 
@@ -75,6 +78,58 @@ def _cmd_bench(args):
     return 0
 
 
+def _cmd_validate(args):
+    from validation import baselines
+    from validation.report import write_reports
+    from validation.runner import run_cases, select
+
+    names = select(args.case or [])
+    if args.update_baselines and (not args.quick or args.case):
+        raise InputError("--update-baselines needs --quick and every case (no --case): the baseline file "
+                         "holds the whole quick set")
+    baseline_path = args.baseline or baselines.DEFAULT
+    compare_with = args.quick and not (args.update_baselines or args.no_baseline)
+    if compare_with and not Path(baseline_path).exists():
+        raise InputError(f"baseline {baseline_path} does not exist; pass --no-baseline or create it with "
+                         f"--update-baselines")
+    print(f"viscobem validate: {len(names)} case(s), {'quick' if args.quick else 'full'} set; writing to {args.out}")
+    record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk,
+                       progress=not args.no_progress)
+    summary = record["summary"]
+    comparison = None
+    if compare_with:
+        comparison = baselines.compare(record, baseline_path)
+    paths = write_reports(record, args.out, comparison, with_plots=not args.no_plots)
+    for name, case in record["cases"].items():
+        judged = [k for k in case["checks"] if k["judged"]]
+        print(f"  {name:24s} {case['status'].upper():6s} {sum(k['passed'] for k in judged):3d}/{len(judged):<3d} "
+              f"checks  {case['seconds']:7.1f} s")
+        if case["status"] == "error":
+            print(f"      {case['error']}")
+    for k in summary["failed_checks"]:
+        print(f"  FAIL {k['case']}: {k['solver']} {k['metric']} at {k['label']} = {k['value']:.3g} "
+              f"> {k['tolerance']:.3g} ({k['why']})")
+    status = 0 if not summary["failed"] else 1
+    if comparison is not None:
+        for r in comparison["regressions"]:
+            print(f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
+                  f"(allowed +-{r['allowed']:.3g})")
+        if comparison["missing"]:
+            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {comparison['missing'][0]['key']}); "
+                  f"regenerate with: viscobem validate --quick --update-baselines --out DIR")
+        print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
+        status = status or (0 if comparison["ok"] else 1)
+    if args.update_baselines:
+        if summary["failed"]:
+            print("  baselines NOT updated: some cases fail their tolerances")
+        else:
+            command = "viscobem validate --quick --update-baselines --out " + str(args.out)
+            print(f"  baselines written to {baselines.write(record, baseline_path, command)}")
+    print(f"  {summary['passed']}/{summary['cases']} cases passed in {record['seconds']:.1f} s; "
+          f"reports: {', '.join(str(p) for p in paths)}")
+    return status
+
+
 def build_parser():
     parser = argparse.ArgumentParser(prog="viscobem", description=__doc__.split("\n\n")[0])
     parser.add_argument("-v", "--verbose", action="store_true", help="log solver progress")
@@ -99,6 +154,18 @@ def build_parser():
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)
+    val = sub.add_parser("validate", help="run validation cases (BEM vs FEM vs exact) and write reports")
+    val.add_argument("--quick", action="store_true", help="coarse settings (the CI regression set)")
+    val.add_argument("--case", action="append", metavar="NAME", help="run only this case (repeatable)")
+    val.add_argument("--out", default="validation-out", help="output folder (default: validation-out)")
+    val.add_argument("--no-vtk", action="store_true", help="do not write VTK files")
+    val.add_argument("--no-progress", action="store_true", help="no progress bar")
+    val.add_argument("--no-plots", action="store_true", help="report.html without figures (faster)")
+    val.add_argument("--baseline", default=None, help="baseline file (default: validation/baselines/quick.json)")
+    val.add_argument("--no-baseline", action="store_true", help="with --quick: do not compare with the baselines")
+    val.add_argument("--update-baselines", action="store_true",
+                     help="with --quick: store this run's numbers as the new baselines")
+    val.set_defaults(func=_cmd_validate)
     return parser
 
 

@@ -1,0 +1,14 @@
+"""Registry of the validation cases (name -> :class:`Case`).
+
+Every case runs in a quick configuration (coarse grids, few speeds: the CI regression set)
+and a full one; each lists only solvers that exist and justifies each tolerance beside its
+settings.
+"""
+from .base import Case, CaseOutput, Check, Profile, Run, Sweep
+from .cylinder import CASES as _CYLINDER
+from .periodic import CASES as _PERIODIC
+from .sphere import CASES as _SPHERE
+
+CASES = {case.name: case for case in (*_CYLINDER, *_SPHERE, *_PERIODIC)}
+
+__all__ = ["CASES", "Case", "CaseOutput", "Check", "Profile", "Run", "Sweep"]

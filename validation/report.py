@@ -1,0 +1,214 @@
+"""Validation reports: ``report.json`` (every number), ``report.md`` (a quick look) and a
+self-contained ``report.html`` (summary table, then per case the pressure overlays, error
+plots, sweeps from each solver and timings; PNG plots embedded as base64)."""
+from __future__ import annotations
+
+import base64
+import html
+import io
+import json
+import math
+from pathlib import Path
+
+__all__ = ["write_reports", "write_json", "write_markdown", "write_html", "plots"]
+
+
+def _fmt(v):
+    if v is None:
+        return "-"
+    if isinstance(v, float):
+        if math.isnan(v):
+            return "nan"
+        return f"{v:.3g}" if v != 0 else "0"
+    return str(v)
+
+
+def write_json(record, path):
+    Path(path).write_text(json.dumps(record, indent=1, allow_nan=True))
+
+
+def _status(c):
+    return {"passed": "PASS", "failed": "FAIL", "error": "ERROR"}[c["status"]]
+
+
+def _check_status(k):
+    return "PASS" if k["passed"] and k["judged"] else ("FAIL" if not k["passed"] else "info")
+
+
+def _worst(case):
+    """Per (solver, metric): the largest value and its tolerance, failing first."""
+    rows = {}
+    for k in case["checks"]:
+        key = (k["solver"], k["metric"])
+        ratio = (k["value"] / k["tolerance"]) if k["judged"] and k["tolerance"] else -1.0
+        if not math.isfinite(ratio):
+            ratio = math.inf
+        if key not in rows or ratio > rows[key][0] or not k["passed"]:
+            if key in rows and not rows[key][1]["passed"] and k["passed"]:
+                continue
+            rows[key] = (ratio, k)
+    return [k for _, k in rows.values()]
+
+
+def write_markdown(record, path, baseline=None):
+    env, s = record["environment"], record["summary"]
+    lines = [f"# viscobem validation ({'quick' if record['quick'] else 'full'} set)", "",
+             f"Commit `{env['commit'][:12]}`{' (dirty)' if env.get('dirty') else ''}, {env['date']}, {env['machine']}, "
+             f"Python {env['python']}; {record['seconds']:.1f} s in total.", "",
+             f"**{s['passed']} of {s['cases']} cases passed** ({s['checks']} checks"
+             f"{', failing: ' + ', '.join(s['failed']) if s['failed'] else ''}).", ""]
+    if baseline is not None:
+        lines += [f"Baseline comparison ({baseline['path']}): "
+                  + ("all values within tolerance." if baseline["ok"] else
+                     f"**{len(baseline['regressions'])} regressions**, {len(baseline['missing'])} missing values."), ""]
+    lines += ["| case | status | time (s) | solvers |", "|---|---|---|---|"]
+    for name, c in record["cases"].items():
+        lines.append(f"| `{name}` | {_status(c)} | {c['seconds']:.1f} | {', '.join(c['solvers'])} |")
+    for name, c in record["cases"].items():
+        lines += ["", f"## `{name}`: {c['title']}", "", c["description"], ""]
+        if c["status"] == "error":
+            lines += [f"**Error:** `{c['error']}`", ""]
+            continue
+        lines += ["Worst value of each metric over the points (tolerance and why):", "",
+                  "| solver | metric | at | value | tolerance | status | why |", "|---|---|---|---|---|---|---|"]
+        for k in _worst(c):
+            lines.append(f"| {k['solver']} | {k['metric']} | {k['label']} | {_fmt(k['value'])} | {_fmt(k['tolerance'])} "
+                         f"| {_check_status(k)} | {k['why']} |")
+        lines += ["", "| solver | point | time (s) | peak memory (MiB) | detail |", "|---|---|---|---|---|"]
+        for r in c["runs"]:
+            lines.append(f"| {r['solver']} | {r['label']} | {r['seconds']:.3g} | {r['peak_mib']:.3g} | {r['detail']} |")
+    Path(path).write_text("\n".join(lines) + "\n")
+
+
+# ----------------------------------------------------------------------------- plots
+def plots(case):
+    """PNG bytes of the case's figures: ``[(title, png), ...]``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import NullFormatter
+
+    figs = []
+    for prof in case["profiles"]:
+        fig, (ax, ae) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True, gridspec_kw=dict(height_ratios=[3, 2]))
+        for name, (x, p) in prof["curves"].items():
+            style = dict(lw=1.6, color="k") if name == prof["reference"] else dict(marker=".", ms=3, lw=0.8)
+            ax.plot(x, p, label=name, **style)
+        ax.set_ylabel("pressure (Pa)")
+        ax.legend(fontsize=8)
+        ax.set_title(prof["label"], fontsize=9)
+        for name, (x, e) in prof["errors"].items():
+            ae.plot(x, e, marker=".", ms=3, lw=0.8, label=f"{name} - {prof['reference']}")
+        ae.axhline(0, color="k", lw=0.5)
+        ae.set_ylabel("pressure error (Pa)")
+        ae.set_xlabel(prof["xlabel"])
+        ae.legend(fontsize=8)
+        fig.subplots_adjust(left=0.13, right=0.97, top=0.93, bottom=0.1, hspace=0.08)
+        figs.append((f"pressure: {prof['label']}", fig))
+    for sw in case["sweeps"]:
+        fig, ax = plt.subplots(figsize=(7, 4))
+        for name, (x, y) in sw["curves"].items():
+            dense = len(x) > 12
+            ax.plot(x, y, label=name, **(dict(lw=1.5, color="k") if dense else dict(marker="o", ms=5, lw=0.8)))
+        ax.set_xscale("log" if sw["logx"] else "linear")
+        ax.set_yscale("log" if sw["logy"] else "linear")
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.yaxis.set_minor_formatter(NullFormatter())
+        ax.set_xlabel(sw["xlabel"])
+        ax.set_ylabel(sw["ylabel"])
+        ax.set_title(sw["title"], fontsize=9)
+        ax.legend(fontsize=8)
+        fig.subplots_adjust(left=0.13, right=0.97, top=0.92, bottom=0.13)
+        figs.append((sw["title"], fig))
+    if case["runs"]:
+        height = 0.35 * len(case["runs"]) + 1.2
+        fig, ax = plt.subplots(figsize=(7, height))
+        labels = [f"{r['solver']} {r['label']}" for r in case["runs"]]
+        ax.barh(range(len(labels)), [r["seconds"] for r in case["runs"]])
+        ax.set_yticks(range(len(labels)), labels, fontsize=7)
+        ax.set_xscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.set_xlabel("wall time (s)")
+        ax.invert_yaxis()
+        fig.subplots_adjust(left=0.4, right=0.97, top=1 - 0.15 / height, bottom=0.65 / height)
+        figs.append(("timings", fig))
+    out = []
+    for title, fig in figs:  # fixed margins: tight_layout costs a third of the plotting time
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=90)
+        plt.close(fig)
+        out.append((title, buf.getvalue()))
+    return out
+
+
+_CSS = ("body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}table{border-collapse:collapse;"
+        "margin:0.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.PASS{background:#d4f4d4}"
+        ".FAIL,.ERROR{background:#f8c8c8}.info{background:#eee}img{max-width:100%}")
+
+
+def write_html(record, path, baseline=None, figures=None, with_plots=True):
+    """``figures[name] = [(title, png), ...]`` (default: :func:`plots` of each case, unless
+    ``with_plots`` is false: then the report holds the tables only)."""
+    e = html.escape
+    env, s = record["environment"], record["summary"]
+    parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>viscobem validation</title>"
+             f"<style>{_CSS}</style></head><body>",
+             f"<h1>viscobem validation ({'quick' if record['quick'] else 'full'} set)</h1>",
+             f"<p>Commit <code>{e(env['commit'][:12])}</code>, {e(env['date'])}, {e(env['machine'])}; "
+             f"{record['seconds']:.1f} s. <b>{s['passed']} of {s['cases']} cases passed</b>, {s['checks']} checks.</p>"]
+    if baseline is not None:
+        parts.append(f"<p>Baselines ({e(str(baseline['path']))}): "
+                     + ("all within tolerance" if baseline["ok"] else
+                        f"<b class='FAIL'>{len(baseline['regressions'])} regressions</b>") + "</p>")
+    parts.append("<h2>Summary</h2><table><tr><th>case</th><th>solver</th><th>metric</th><th>worst at</th>"
+                 "<th>value</th><th>tolerance</th><th>status</th></tr>")
+    for name, c in record["cases"].items():
+        if c["status"] == "error":
+            parts.append(f"<tr><td>{e(name)}</td><td colspan=5>{e(c['error'])}</td><td class='ERROR'>ERROR</td></tr>")
+        for k in _worst(c):
+            st = _check_status(k)
+            parts.append(f"<tr><td><a href='#{e(name)}'>{e(name)}</a></td><td>{e(k['solver'])}</td><td>{e(k['metric'])}"
+                         f"</td><td>{e(k['label'])}</td><td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td>"
+                         f"<td class='{st}'>{st}</td></tr>")
+    parts.append("</table>")
+    for name, c in record["cases"].items():
+        parts.append(f"<h2 id='{e(name)}'>{e(name)}: {e(c['title'])} <span class='{_status(c)}'>{_status(c)}</span></h2>"
+                     f"<p>{e(c['description'])}</p>")
+        if c["status"] == "error":
+            parts.append(f"<pre>{e(c['traceback'])}</pre>")
+            continue
+        parts.append("<details><summary>all checks</summary><table><tr><th>solver</th><th>metric</th><th>at</th>"
+                     "<th>value</th><th>tolerance</th><th>status</th><th>why</th></tr>")
+        for k in c["checks"]:
+            st = _check_status(k)
+            parts.append(f"<tr><td>{e(k['solver'])}</td><td>{e(k['metric'])}</td><td>{e(k['label'])}</td>"
+                         f"<td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td><td class='{st}'>{st}</td>"
+                         f"<td>{e(k['why'])}</td></tr>")
+        parts.append("</table></details>")
+        figs = figures[name] if figures is not None else (plots(c) if with_plots else [])
+        for title, png in figs:
+            parts.append(f"<figure><img alt='{e(title)}' src='data:image/png;base64,"
+                         f"{base64.b64encode(png).decode()}'/></figure>")
+        parts.append("<table><tr><th>solver</th><th>point</th><th>time (s)</th><th>peak MiB</th><th>detail</th></tr>")
+        for r in c["runs"]:
+            parts.append(f"<tr><td>{e(r['solver'])}</td><td>{e(r['label'])}</td><td>{r['seconds']:.3g}</td>"
+                         f"<td>{r['peak_mib']:.3g}</td><td>{e(r['detail'])}</td></tr>")
+        parts.append("</table>")
+        if c["files"]:
+            parts.append("<p>VTK (open the .pvd files in ParaView): " + ", ".join(
+                f"<code>{e(f)}</code>" for f in c["files"] if f.endswith(".pvd")) + "</p>")
+    parts.append("</body></html>")
+    Path(path).write_text("\n".join(parts))
+
+
+def write_reports(record, out_dir, baseline=None, with_plots=True):
+    """Write report.json, report.md and report.html into ``out_dir``; return their paths."""
+    out_dir = Path(out_dir)
+    if baseline is not None:
+        record = dict(record, baseline=baseline)
+    paths = [out_dir / "report.json", out_dir / "report.md", out_dir / "report.html"]
+    write_json(record, paths[0])
+    write_markdown(record, paths[1], baseline)
+    write_html(record, paths[2], baseline, with_plots=with_plots)
+    return paths
