@@ -22,8 +22,8 @@ pinned to one thread and FFTs on all cores, see :mod:`benchmarks._measure`):
    (:meth:`bem.Material.folded`), reusing operators across a sweep (the LRU cache of
    :mod:`bem.sliding`, and warm starts), and not computing unrequested outputs.
 
-Adding a solver (e.g. the isolated or adaptive BEM once ``bem.solve(..., periodic=False,
-method="uniform" | "adaptive")`` exists) takes one function and a decorator::
+Adding a solver takes one function and a decorator (the isolated uniform and adaptive BEM
+entries, against Hunter's exact rolling cylinder, are written this way)::
 
     def _isolated_group(group, quick):  # runs in a fresh process; returns a list of points
         ...  # build the sphere on group["n"]², solve per rtol, compare with validation.hertz
@@ -225,6 +225,49 @@ def _fem(quick):
         yield {"resolution": res, "domain": 30}
     for dom in (3, 10) if quick else (3, 10, 100):
         yield {"resolution": 3, "domain": dom}
+
+
+# ---------------------------------------------------------------- isolated BEM (uniform, adaptive), Hunter
+def _hunter_reference(factor):
+    """Hunter's exact friction and peak pressure for benchmarks.isolated's cylinder problem."""
+    from benchmarks.isolated import LOADS, RADIUS, _a0, _material
+    from validation.hunter import rolling_cylinder
+
+    m = _material()
+    exact = rolling_cylinder(m, radius=RADIUS, load=LOADS["cylinder"], speed=factor * _a0("cylinder", m) / m.creep_times[0])
+    return exact.friction, exact.peak_pressure
+
+
+def _isolated_group(group, quick):
+    from benchmarks.isolated import _case
+
+    mu, peak = _hunter_reference(group["factor"])
+    row = _case("cylinder", group["factor"], group["method"], group["n"], group.get("levels", 0))
+    error = max(abs(row["friction"] / mu - 1), abs(row["peak_pressure"] / peak - 1))
+    return [{"n": group["n"], "levels": group.get("levels", 0), "error": error, "time": row["wall_s"],
+             "peak_rss": _measure.peak_rss(), "friction_error": abs(row["friction"] / mu - 1),
+             "peak_pressure_error": abs(row["peak_pressure"] / peak - 1), "iterations": row["iterations"],
+             "elements": row["elements"]}]
+
+
+_HUNTER_PROBLEM = ("rigid cylinder rolling on an SLS (E_inf/E0 = 3), V lambda = a0, P = 1000 N/m, R = 10 mm, "
+                   "domain 3 a0")
+
+
+@register("isolated-uniform-hunter", solver="isolated BEM (uniform DC-FFT)", measure=_isolated_group,
+          problem=_HUNTER_PROBLEM, reference="Hunter (exact)",
+          error="max(rel. friction error, rel. peak-pressure error)", knobs=("n",))
+def _isolated_uniform(quick):
+    for n in (128, 256, 512, 1024) if quick else (128, 256, 512, 1024, 2048, 4096, 8192):
+        yield {"method": "uniform", "n": n, "factor": 1.0}
+
+
+@register("isolated-adaptive-hunter", solver="isolated BEM (adaptive mesh)", measure=_isolated_group,
+          problem=_HUNTER_PROBLEM, reference="Hunter (exact)",
+          error="max(rel. friction error, rel. peak-pressure error)", knobs=("n", "levels"))
+def _isolated_adaptive(quick):
+    for n in (128, 256, 512) if quick else (128, 256, 512, 1024, 2048):
+        yield {"method": "adaptive", "n": n, "levels": int(np.log2(n // 32)), "factor": 1.0}
 
 
 FINISH = {"periodic-rough-viscoelastic": _rough_finish}
