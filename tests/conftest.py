@@ -19,6 +19,7 @@ except ImportError:  # only a speed-up: single-threaded BLAS for many small dens
         return contextlib.nullcontext()
 
 from bem import Material
+from validation.periodic_exact import murty_lcp  # the dense reference's LCP solver (Murty)
 
 
 def make_seed():
@@ -51,31 +52,6 @@ def dense_operator(op):
         cols[:, j] = op.displacement(eye).ravel()
         eye.flat[j] = 0.0
     return cols
-
-
-def murty_lcp(M, q, maxpivots=100000):
-    """Solve ``w = M z + q >= 0, z >= 0, w.z = 0`` by Murty's least-index principal pivoting.
-
-    Obviously correct for a P-matrix ``M``: the basis is a set ``C`` of indices where ``z``
-    is basic; solve ``M_CC z_C = -q_C`` directly, then flip the *least* index whose basic
-    variable is negative. Murty (1974, doi:10.1007/BF01585524) proved that this terminates
-    from any complementary basis when ``M`` is a P-matrix, at the unique solution.
-    Returns ``(z, pivots)``.
-    """
-    n = q.size
-    C = -q > 0  # start from the bodies' overlap: any start works, this one is short
-    for pivots in range(maxpivots):
-        z = np.zeros(n)
-        idx = np.flatnonzero(C)
-        if idx.size:
-            z[idx] = np.linalg.solve(M[np.ix_(idx, idx)], -q[idx])
-        w = M @ z + q
-        w[idx] = 0.0
-        bad = np.flatnonzero(np.where(C, z < 0, w < 0))
-        if bad.size == 0:
-            return z, pivots
-        C[bad[0]] = not C[bad[0]]
-    raise RuntimeError("Murty's pivoting did not terminate")
 
 
 def dense_contact(op, heights, shifted_approach):

@@ -31,7 +31,7 @@ DENSE_CASES = [(1, 64, 0.5), (2, 24, 0.3)]  # (dim, n, rigid overlap / peak-to-v
     pytest.param(2, 32, 0.45, marks=pytest.mark.slow)])
 @pytest.mark.parametrize("xi", [1e-2, 1e-1, 1.0, 10.0])
 def test_matches_dense_principal_pivoting(dim, n, overlap, xi):
-    """Same pressure as an obviously correct direct LCP solve (conftest.murty_lcp), at the
+    """Same pressure as an obviously correct direct LCP solve (validation.periodic_exact.murty_lcp), at the
     dense solution's load (load control) and at its approach (displacement control).
     The LCP has a unique solution (P-matrix), so both must agree to the iterative solver's
     tolerance times the conditioning: measured <= 6e-12, bound 1e-7."""
