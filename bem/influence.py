@@ -248,18 +248,21 @@ def square_creep_sum(n, width, shifts, weights):
     with ``shift >= width / 2`` (their Gauss–Legendre nodes coincide; only the weights differ).
 
     Same offsets and shape as :func:`square_creep`; ``weights`` in any unit (e.g. the creep
-    compliances ``C_k``, 1/Pa).
+    compliances ``C_k``, 1/Pa). ``weights`` of shape ``(sets, terms)`` gives ``sets`` such sums
+    from one quadrature, shape ``(sets, 4n - 1, n)``.
     """
     h = width / 2
     s = np.arange(-(2 * n - 1), 2 * n) * h
     y = width * np.arange(n)
     shifts = np.asarray(shifts, dtype=float)
     weights = np.asarray(weights, dtype=float)
+    single = weights.ndim == 1
+    weights = np.atleast_2d(weights).T[:, :, None, None]  # (terms, sets, 1, 1)
     shared = shifts >= h
     t_sh = _nodes(np.array([0.0, h]), h)[0]
     w_sh = [_nodes(np.array([0.0, h]), L)[1] for L in shifts[shared]]
     own = [(L, c, *_half_element_nodes(h, L)) for L, c in zip(shifts[~shared], weights[~shared])]
-    out = np.zeros((s.size, n))
+    out = np.zeros((weights.shape[1], s.size, n))
     most = max([t_sh.size] + [o[2].size for o in own])
     chunk = max(1, 2**21 // (s.size * most))  # rows per block: bounded memory
     for j0 in range(0, n, chunk):
@@ -268,8 +271,8 @@ def square_creep_sum(n, width, shifts, weights):
         if w_sh:
             vals = square_elastic(s[:-1, None, None] + t_sh[None, :, None], yy[None, None, :], width)
             for L, c, wt in zip(shifts[shared], weights[shared], w_sh):
-                out[:, rows] += c * _sweep(np.einsum("mtj,t->mj", vals, wt), s, yy, width, L, j0 == 0)
+                out[:, :, rows] += c * _sweep(np.einsum("mtj,t->mj", vals, wt), s, yy, width, L, j0 == 0)
         for L, c, t, wt in own:
             vals = square_elastic(s[:-1, None, None] + t[None, :, None], yy[None, None, :], width)
-            out[:, rows] += c * _sweep(np.einsum("mtj,t->mj", vals, wt), s, yy, width, L, j0 == 0)
-    return out
+            out[:, :, rows] += c * _sweep(np.einsum("mtj,t->mj", vals, wt), s, yy, width, L, j0 == 0)
+    return out[0] if single else out

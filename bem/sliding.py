@@ -11,11 +11,13 @@ grid resolves the contact spots. ``dissipated_power = friction * F_N * speed`` (
 W/m for profiles).
 
 Isolated contacts (``periodic=False``, :mod:`bem.isolated`): the domain is the array and
-pressure outside it is zero. ``friction`` is again the dissipation form, exact for the
-piecewise-constant element pressures (``-sum_j p_j [u(x_j + d/2) - u(x_j - d/2)]`` with the
-exact displacement at element edges, see ``IsolatedHalfSpace.dissipation_integral``), so it
-is non-negative on any grid; ``friction_eq6`` uses central differences of the heights
-between element centres (one-sided at the domain's ends, where the pressure vanishes).
+pressure outside it is zero. ``friction`` is again the dissipation form, collocated like the
+displacement: ``-sum_j p_j u'(x_j) d**ndim`` with the exact slope of the displacement at the
+element centres (see ``IsolatedHalfSpace.dissipation_integral``: the exact dissipation of the
+piecewise-constant pressure would add that of its steps between elements, ~ ``L ln(d/L)``,
+percent-level when ``v lambda`` is far below a cell); ``friction_eq6`` uses central
+differences of the heights between element centres (one-sided at the domain's ends, where
+the pressure vanishes).
 """
 import logging
 import time
@@ -269,7 +271,7 @@ def _friction_periodic(op, surface, p, total):
 
 
 def _friction_isolated(op, surface, p, total):
-    """Dissipation form (exact for piecewise-constant pressure) and eq. 6 (central differences)."""
+    """Dissipation form (slope collocated at element centres) and eq. 6 (central differences)."""
     friction = op.dissipation_integral(p) / total
     dhdx = np.gradient(surface.heights, op.spacing, axis=0)
     return friction, float(-np.sum(p * dhdx) * op.spacing ** surface.ndim / total)

@@ -196,14 +196,16 @@ WHY_BEM = {
 # Isolated BEM (2-D, DC-FFT; square of 3 a0, dx = a_inf / cells), uniform and adaptive give the same
 # pressures at rest: measured L2 0.82 % / 0.62 % (rest) and 1.56 % / 0.91 % (glassy: fewer cells per radius)
 # at 12 / 16 cells, peak <= 1.5e-3, edges <= 0.3 cell. Low-speed friction against the asymptote at s = 1e-2:
-# uniform 2.5 % / 0.6 %, adaptive 1.2 % / 0.6 %; at s = 1e-3 the uniform solver is 19 % / 13 % off (adaptive
-# 1.7 % / 1.4 %), a defect of its friction at sub-cell pressure shifts, so s = 1e-3 is in the full set only.
+# uniform 1.2 % / 0.6 %, adaptive 1.2 % / 0.6 %; at s = 1e-3 uniform 1.7 % / 1.4 % (adaptive 1.7 % / 1.4 %): both
+# collocate the slope of u at element centres. (The uniform solver's earlier friction, the exact dissipation of
+# the piecewise-constant pressure, was 19 % / 13 % off at s = 1e-3: the steps between elements dissipate
+# ~ V lambda ln(dx / V lambda) each, without bound as s -> 0.) s = 1e-3 is in the full set only.
 WHY_ISO = {
     "l2": "square-root edge on a square grid ~ dx/a; measured 0.82 % (rest) and 1.56 % (glassy) at 12 cells, "
           "0.62 % / 0.91 % at 16",
     "peak": "O(dx^2); measured <= 1.5e-3",
     "edge": "sampling error half a cell plus the solver's; one cell",
-    "asymptote": "sub-cell pressure shift at low speed: measured 0.6-2.5 % at s = 1e-2 (12-16 cells) plus the "
+    "asymptote": "collocation ~ dx/a: measured 0.6-1.7 % at s = 1e-3..1e-2 (12-16 cells) plus the "
                  "next-order term ~ 0.67 s",
 }
 WHY = {"bem-periodic": WHY_BEM, "bem-isolated-uniform": WHY_ISO, "bem-isolated-adaptive": WHY_ISO}
