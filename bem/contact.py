@@ -211,21 +211,22 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
     c = 1.0 / a0  # active-set weight: the stiffness of one grid cell (Pa/m)
     inner_maxiter = inner_maxiter or int(20 * np.sqrt(ht.size) + 200)
     solve_inner = krylov.cg if op.is_symmetric else krylov.gmres
+    strongly_nonsymmetric = _max_phase(op) > np.pi / 4
     if precondition is None:
-        precondition = ht.size >= PRECONDITION_MIN_SIZE and _max_phase(op) <= np.pi / 4
+        precondition = ht.size >= PRECONDITION_MIN_SIZE and not strongly_nonsymmetric
     precondition = precondition and hasattr(op, "pressure_from_displacement")
     final_atol = 0.1 * rtol * h_ref
     matvecs = 0
 
-    if initial is None and load_control and _max_phase(op) > np.pi / 4:
+    if initial is None and load_control and strongly_nonsymmetric and hasattr(op, "pressure_from_displacement"):
         # Full contact is one Fourier division. Where it is (nearly) the answer - tension on
         # under a tenth of the cell - start from it, clipped: the symmetric-part start below
         # would lose it (1-D 512, E_inf/E0 1e4, 0.9x the closing load: 39924 -> 2619 products;
         # above the closing load it is the exact solution, found in one iteration).
-        full = _full_contact_pressure(op, ht) + p_ref if hasattr(op, "pressure_from_displacement") else None
-        if full is not None and np.mean(full < 0) < 0.1:  # near (or at) full contact
+        full = _full_contact_pressure(op, ht) + p_ref
+        if np.mean(full < 0) < 0.1:  # near (or at) full contact
             initial = np.maximum(full, 0.0)
-    if initial is None and _max_phase(op) > np.pi / 4:
+    if initial is None and strongly_nonsymmetric:
         # strongly non-symmetric (high E_inf/E0 near the loss peak): start from the contact of
         # the symmetric part (symbol Re a_q), a robust CG solve that puts the set near its place
         sym = _solve_contact(op.symmetric_part(), heights, mean_pressure=mean_pressure, approach=approach,

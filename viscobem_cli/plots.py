@@ -22,7 +22,8 @@ def _pyplot():
 
 
 def _save(fig, path):
-    """PNG of ``fig`` written atomically (temporary file + rename): never a truncated plot."""
+    """PNG of ``fig`` written atomically (temporary file + rename), then closed: never a
+    truncated plot."""
     import io
 
     from .sweep import write_atomic
@@ -30,6 +31,7 @@ def _save(fig, path):
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=120)
     write_atomic(path, buffer.getvalue(), mode="wb")
+    _pyplot().close(fig)
 
 
 def _arr(values):
@@ -72,7 +74,6 @@ def friction_curve(scene, record, path):
     ax.set_title(textwrap.fill(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), 90),
                  fontsize=8)
     _save(fig, path)
-    plt.close(fig)
 
 
 def contact_area(scene, record, path):
@@ -93,7 +94,6 @@ def contact_area(scene, record, path):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     _save(fig, path)
-    plt.close(fig)
 
 
 def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0):
@@ -115,7 +115,6 @@ def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0):
         _sliding_arrow(ax)
     ax.set_title(rf"$\xi$ = {xi:.3g}: {title}", fontsize=9, pad=18)
     _save(fig, path)
-    plt.close(fig)
 
 
 def polar_m2(scene, record, l, i, path):
@@ -139,7 +138,6 @@ def polar_m2(scene, record, l, i, path):
     ax.set_title(r"$m_2(\theta) / \max m_2$ of the deformed surface (sliding along $\theta = 0$)", fontsize=9)
     ax.legend(fontsize=7, loc="lower center", bbox_to_anchor=(0.5, -0.22))
     _save(fig, path)
-    plt.close(fig)
 
 
 def psd_contour(scene, cpsd, ellipse, xi, path):
@@ -165,7 +163,6 @@ def psd_contour(scene, cpsd, ellipse, xi, path):
     ax.legend(fontsize=7, loc="upper right")
     ax.set_title(rf"contact PSD at $\xi$ = {xi:.3g}, contour {ellipse.level:g}", fontsize=9)
     _save(fig, path)
-    plt.close(fig)
 
 
 def anisotropy_vs_xi(scene, record, path, peak):
@@ -192,7 +189,6 @@ def anisotropy_vs_xi(scene, record, path, peak):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     _save(fig, path)
-    plt.close(fig)
 
 
 def plot_index(scene, record):
@@ -230,7 +226,6 @@ def indenter_maps(scene, fields, out):
         ax.legend(fontsize=8)
         ax.set_title(scene.title, fontsize=9)
         _save(fig, out / "pressure_profiles.png")
-        plt.close(fig)
         return ["pressure_profiles.png"]
     ext = [x[0] - surface.spacing * 5e2, x[-1] + surface.spacing * 5e2] * 2
     fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.0), constrained_layout=True,
@@ -244,7 +239,6 @@ def indenter_maps(scene, fields, out):
         ax.set_ylabel("y (mm)")
         ax.set_title(rf"$\xi$ = {scene.xi[k]:.3g}: $\mu$ = {r.friction:.3g}", fontsize=9)
     _save(fig, out / "pressure_maps.png")
-    plt.close(fig)
     fig, ax = plt.subplots(figsize=(5.2, 4.6), constrained_layout=True)
     keys = sorted(fields, key=lambda k: scene.speeds[k])
     colours = plt.cm.viridis(np.linspace(0, 1, len(keys)))
@@ -258,7 +252,6 @@ def indenter_maps(scene, fields, out):
     ax.set_ylabel("y (mm)")
     ax.set_title("contact outlines", fontsize=9)
     _save(fig, out / "contact_outlines.png")
-    plt.close(fig)
     return ["pressure_maps.png", "contact_outlines.png"]
 
 
