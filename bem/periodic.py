@@ -83,14 +83,21 @@ class PeriodicHalfSpace:
 
     def displacement(self, pressure):
         """Zero-mean surface displacement (m) under ``pressure`` (Pa), same shape."""
-        return fft.inverse(fft.forward(pressure) * self.symbol, self.shape)
+        return self._multiply(pressure, self.symbol)
 
     def pressure_from_displacement(self, displacement):
         """Zero-mean pressure (Pa) whose displacement is ``displacement`` up to its mean.
 
         The exact inverse of :meth:`displacement` on zero-mean fields (full contact).
         """
-        return fft.inverse(fft.forward(displacement) * self._inverse_symbol(), self.shape)
+        return self._multiply(displacement, self._inverse_symbol())
+
+    def _multiply(self, field, multiplier):
+        """Real-space action of a Fourier multiplier; the spectrum is a temporary, so the
+        multiplication and the inverse transform's first pass work in place."""
+        fq = fft.forward(field)
+        fq *= multiplier
+        return fft.inverse(fq, self.shape, overwrite=True)
 
     def _inverse_symbol(self):
         """``1 / a_q`` (0 for the mean mode), computed once."""

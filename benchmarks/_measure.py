@@ -22,7 +22,7 @@ import time
 from pathlib import Path
 
 __all__ = ["THREAD_VARIABLES", "thread_environment", "run_in_fresh_process", "peak_rss",
-           "current_rss", "median_time", "load_average", "source_snapshot", "source_digest"]
+           "current_rss", "median_time", "fft_pair_time", "load_average", "source_snapshot", "source_digest"]
 
 THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
                     "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")
@@ -89,6 +89,17 @@ def median_time(func, *, min_repeats=5, max_repeats=50, budget=1.0):
         func()
         times.append(time.perf_counter() - t0)
     return statistics.median(times), min(times), len(times)
+
+
+def fft_pair_time(shape, **kwargs):
+    """``median_time`` of one plain FFT pair, ``scipy.fft.irfftn(scipy.fft.rfftn(x))`` on all
+    cores (the library's own transforms, no multiply, a fresh output each call), on a random
+    real field of ``shape``: the reference cost of one operator application."""
+    import numpy as np
+    import scipy.fft as sfft
+
+    x = np.random.default_rng(0).standard_normal(shape)
+    return median_time(lambda: sfft.irfftn(sfft.rfftn(x, workers=-1), s=shape, workers=-1), **kwargs)
 
 
 def load_average():
