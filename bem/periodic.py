@@ -109,6 +109,12 @@ class PeriodicHalfSpace:
             self._inv = inv
         return inv
 
+    def coarsened(self):
+        """The same operator on the grid with half the points per axis (even sides only)."""
+        if any(n % 2 for n in self.shape):
+            raise ValueError(f"coarsening needs even grid sides, got {self.shape}")
+        return PeriodicHalfSpace(tuple(n // 2 for n in self.shape), self.length, self.material, self.speed)
+
     def symmetric_part(self):
         """Operator with the symbol's real part: the symmetric part of this operator."""
         twin = object.__new__(PeriodicHalfSpace)

@@ -70,17 +70,19 @@ def test_gmres_stays_accurate_when_gram_schmidt_cancels(monkeypatch):
 
 
 @pytest.mark.slow
-def test_symmetric_warm_start_stops_cycling():
+def test_symmetric_warm_start_stops_cycling(monkeypatch):
     """The benchmark's 20-term rubber (E_inf/E0 = 1000, tan delta up to 3.3) at 512², ~7 %
-    contact: the symmetric-part warm start cycles between two sets; stopping it once the
-    number of changes stalls took the solve from 4587 to 2883 operator products."""
+    contact, without the coarse-grid start: the symmetric-part warm start cycles between two
+    sets; stopping it once the number of changes stalls took the solve from 4587 to 2883
+    operator products (1837 with inner tolerances that tighten only near the solution)."""
     from benchmarks.periodic import LENGTH, materials, surface_heights
 
+    monkeypatch.setattr(contact, "COARSEN", False)
     s = bem.surfaces.from_heights(surface_heights(512), LENGTH)
     rubber, speed = materials()["rubber20"]
     res = bem.solve(s, rubber, speed=speed, load=0.9634, maxiter=1000)
     assert 0.06 < res.contact_fraction < 0.08
-    assert res.matvecs < 3500
+    assert res.matvecs < 2500
 
 
 def _with_preconditioning(flag):
