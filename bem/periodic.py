@@ -113,7 +113,8 @@ class PeriodicHalfSpace:
         """The same operator on the grid with half the points per axis (even sides only)."""
         if any(n % 2 for n in self.shape):
             raise ValueError(f"coarsening needs even grid sides, got {self.shape}")
-        return PeriodicHalfSpace(tuple(n // 2 for n in self.shape), self.length, self.material, self.speed)
+        coarse = PeriodicHalfSpace(tuple(n // 2 for n in self.shape), self.length, self.material, self.speed)
+        return coarse.symmetric_part() if self.__dict__.get("_symmetric_part") else coarse
 
     def symmetric_part(self):
         """Operator with the symbol's real part: the symmetric part of this operator."""
@@ -121,6 +122,7 @@ class PeriodicHalfSpace:
         twin.__dict__.update(self.__dict__)
         twin.__dict__.pop("_inv", None)
         twin.symbol = np.real(self.symbol).copy()
+        twin._symmetric_part = True
         twin.is_symmetric = True
         return twin
 

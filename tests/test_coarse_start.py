@@ -49,3 +49,13 @@ def test_coarse_start_changes_nothing_but_the_cost(material, monkeypatch):
     assert err < 1e-7
     assert nested.matvecs < plain.matvecs
     assert "coarser grids" in nested.message and "coarser grids" not in plain.message
+
+
+def test_coarsened_keeps_the_kind_of_operator():
+    material = bem.Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=0.01)
+    op = PeriodicHalfSpace((16, 16), 0.01, material, 1.0)
+    coarse = op.coarsened()
+    assert coarse.shape == (8, 8) and not coarse.is_symmetric
+    sym = op.symmetric_part().coarsened()
+    assert sym.is_symmetric
+    np.testing.assert_array_equal(sym.symbol, np.real(coarse.symbol))
