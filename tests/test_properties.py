@@ -95,14 +95,19 @@ def test_dissipation_is_non_negative_for_any_pressure(shape, log_r, log_x, seed)
     assert d == pytest.approx(d_field, rel=1e-9, abs=bound)
 
 
+def _problem(shape, log_r, log_x, seed, level):
+    """Material, speed, surface and a load ``10**level`` times the full-contact load."""
+    m = material(log_r)
+    v = speed_of(m, log_x)
+    s = rough(shape, seed)
+    return m, v, s, 10**level * full_contact_load(s, m, v)
+
+
 # ---------------------------------------------------------------- contact solutions
 @FEW
 @given(shape=shapes, log_r=log_ratio, log_x=log_xi, seed=seeds, level=st.floats(-3, 0.5))
 def test_load_balance_and_sanity(shape, log_r, log_x, seed, level):
-    m = material(log_r)
-    v = speed_of(m, log_x)
-    s = rough(shape, seed)
-    load = 10**level * full_contact_load(s, m, v)
+    m, v, s, load = _problem(shape, log_r, log_x, seed, level)
     res = bem.solve(s, m, speed=v, load=load)
     area = L**len(shape)
     assert res.success and res.residual <= 1e-8
@@ -156,10 +161,7 @@ def _reflect(field, axis):
 @FEW
 @given(n=st.sampled_from([8, 12, 16]), log_r=log_ratio, log_x=log_xi, seed=seeds, level=st.floats(-2, 0))
 def test_reflection_y_maps_solution(n, log_r, log_x, seed, level):
-    m = material(log_r)
-    v = speed_of(m, log_x)
-    s = rough((n, n), seed)
-    load = 10**level * full_contact_load(s, m, v)
+    m, v, s, load = _problem((n, n), log_r, log_x, seed, level)
     res = bem.solve(s, m, speed=v, load=load, rtol=1e-10)
     mirrored = bem.solve(bem.surfaces.from_heights(_reflect(s.heights, 1), L), m, speed=v, load=load,
                          rtol=1e-10)
@@ -173,10 +175,7 @@ def test_reflection_y_maps_solution(n, log_r, log_x, seed, level):
 @FEW
 @given(shape=shapes, log_r=log_ratio, log_x=log_xi, seed=seeds, level=st.floats(-2, 0))
 def test_reversed_sliding_mirrors_solution(shape, log_r, log_x, seed, level):
-    m = material(log_r)
-    v = speed_of(m, log_x)
-    s = rough(shape, seed)
-    load = 10**level * full_contact_load(s, m, v)
+    m, v, s, load = _problem(shape, log_r, log_x, seed, level)
     area = L**len(shape)
     forward = bem.solve(bem.surfaces.from_heights(_reflect(s.heights, 0), L), m, speed=v, load=load,
                         rtol=1e-10)
