@@ -21,13 +21,29 @@ symmetric, GMRES otherwise, loosely while the set still changes and tightly once
 settles. The inner solves are preconditioned by ``R A^-1 R^T``, the exact full-contact
 inverse (one FFT pair) restricted to ``C``: on the benchmark surface (about 10 % contact)
 it cut the operator products from 264 to 184 (elastic, 1024²), 824 to 293 (seed SLS, 512²)
-and 4587 to 2296 (20-term rubber, 512²). Strongly non-symmetric operators are not
-preconditioned: on the 32² robustness sweep it cost more products than it saved, and on
-the benchmark rubber at 1024² it needed 7707 products for 23 damped steps, unconverged,
-against 3792 for the whole solve without it.
-Nor are small grids (below ``PRECONDITION_MIN_SIZE`` = 2^17 points): at 128² and 256² the
-restricted system is well enough conditioned that the extra pair does not pay (elastic
-91 -> 96 products at 128²; seed 181 -> 203 at 256²).
+and 4587 to 2296 (20-term rubber, 512²). Not on small grids (below
+``PRECONDITION_MIN_SIZE`` = 2^17 points): at 128² and 256² the restricted system is well
+enough conditioned that the extra pair does not pay (elastic 91 -> 96 products at 128²;
+seed 181 -> 203 at 256²).
+
+Strongly non-symmetric operators (symbol phase above 45 degrees: high ``E_inf/E0`` near the
+loss peak) are preconditioned differently, on 2-D grids of every size: by the *line
+preconditioner* ``(R C R^T)^-1 R G^-1 R^T`` of
+:meth:`bem.periodic.PeriodicHalfSpace.line_preconditioner`, where ``A = G C`` splits into the
+elastic operator and the creep convolution along x, and ``C`` is inverted exactly on the
+contact set, one x-line at a time. ``R A^-1 R^T`` does not help them (benchmark rubber at
+1024²: 7707 products for 23 damped steps, unconverged, against 3792 for the whole solve
+without it); the line preconditioner does: GMRES on the rubber's final 512² contact set took
+1095 products unpreconditioned and 43 with it, and in the periodic benchmark whole solves
+went from 1615 to 961 products (512², 8.3 s -> 6.5 s) and from 3836 to 1604 (1024², 102 s ->
+51 s); 2048² now solves in 510 s (3730 products, 2.2 GiB). Its dense line inverses cost
+``sum m^3`` flops per Newton point (``m`` contact points on a line; lines whose contact did
+not change keep theirs) and at most ``bem.periodic.LINE_BUDGET`` = 1 GiB (otherwise the
+solve goes unpreconditioned). Such a line-preconditioned
+attempt gives up once its residual has not reached a new low for ``RESIDUAL_STALL`` = 30
+steps, and the solve is redone without it: one case of the 32² robustness sweep (SLS,
+``E_inf/E0`` 1e4, xi = 1, near full contact) cycles with it and converges without (55 steps);
+the sweep as a whole went from 73082 to 73786 products, its other cases from 30671 to 26463.
 
 First iterate. On grids of at least ``COARSEN_MIN_SIZE`` = 2^18 points (512²) with even
 sides: the same problem solved on the grid with half the points per axis (to
@@ -67,6 +83,8 @@ from .errors import ConvergenceError
 log = logging.getLogger(__name__)
 
 PRECONDITION_MIN_SIZE = 2**17  # grid points; see the module docstring
+LINES = True  # line-preconditioned first attempt for strongly non-symmetric 2-D operators
+RESIDUAL_STALL = 30  # steps without a new low in the residual that end that attempt
 STALL_LIMIT = 5  # steps without a new low in set changes that count as cycling
 COARSEN = True  # start large grids from the next coarser grid (module docstring)
 COARSEN_MIN_SIZE = 2**18  # grid points
@@ -152,7 +170,9 @@ def solve_contact(op, heights, **kwargs):
     Two attempts share ``maxiter`` (default 400): a fast one whose inner solves loosen again
     after full Newton steps, then, if it fails, one whose inner tolerances only tighten.
     Strongly non-symmetric operators (symbol phase above 45 degrees) use the second
-    strategy at once, with all of ``maxiter``.
+    strategy at once; on 2-D periodic grids its first attempt is line-preconditioned and
+    gives up when its residual stalls (``RESIDUAL_STALL``), the second is not (module
+    docstring).
     """
     # SPEC §7: threaded BLAS on vectors of this size is slow, and 1000x slower when the other
     # core is busy; the FFTs keep their own workers.
@@ -178,6 +198,17 @@ def _solve_twice(op, heights, maxiter, kwargs):
     """The fast attempt, then if needed the careful one (see :func:`solve_contact`)."""
     # strongly non-symmetric operators (phase > 45 degrees) go straight to the careful strategy
     careful = _max_phase(op) > np.pi / 4
+    lines = (careful and LINES and kwargs.get("precondition") is None
+             and op.__dict__.get("_creep") is not None)
+    if lines:
+        first = _solve_contact(op, heights, raise_on_failure=False, maxiter=maxiter, relax_inner=False,
+                               precondition="lines", residual_stall=RESIDUAL_STALL, **kwargs)
+        if first.success or maxiter < 2:
+            return first
+        log.info("retrying without the line preconditioner: %s", first.message)
+        second = _solve_contact(op, heights, raise_on_failure=False, relax_inner=False,
+                                maxiter=max(1, maxiter - first.iterations), **kwargs)
+        return _after(first, second)
     first = _solve_contact(op, heights, raise_on_failure=False,
                            maxiter=maxiter if careful else (maxiter + 1) // 2,
                            relax_inner=not careful, **kwargs)
@@ -188,10 +219,17 @@ def _solve_twice(op, heights, maxiter, kwargs):
     log.info("retrying with monotone inner tolerances: %s", first.message)
     second = _solve_contact(op, heights, raise_on_failure=False, relax_inner=False,
                             maxiter=maxiter - first.iterations, **kwargs)
+    return _after(first, second)
+
+
+def _after(first, second):
+    """The second attempt's solution, with the first attempt's work added to its counts."""
     return replace(second, matvecs=first.matvecs + second.matvecs,
                    iterations=first.iterations + second.iterations,
-                   message=second.message.replace("active-set iterations", "active-set iterations "
-                                                  f"(after a first attempt of {first.iterations})"))
+                   message=second.message.replace(
+                       f"active-set iterations ({second.matvecs} operator products)",
+                       f"active-set iterations after a first attempt of {first.iterations} "
+                       f"({first.matvecs + second.matvecs} operator products in all)"))
 
 
 def _restricted(apply, idx, shape, project):
@@ -207,6 +245,14 @@ def _restricted(apply, idx, shape, project):
         return out - out.mean() if project else out
 
     return f
+
+
+def _projected(f):
+    """``z -> P f(P z)`` with ``P`` the removal of the mean (the load constraint)."""
+    def g(z):
+        out = f(z - z.mean())
+        return out - out.mean()
+    return g
 
 
 def _max_phase(op):
@@ -242,7 +288,7 @@ def _line_search(p, g, p_new, g_new, c):
 
 def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, maxiter=200,
                    inner_maxiter=None, inner_eta=0.1, initial=None, raise_on_failure=True,
-                   relax_inner=True, precondition=None, stop_when_cycling=False):
+                   relax_inner=True, precondition=None, stop_when_cycling=False, residual_stall=None):
     """Solve the contact problem for operator ``op`` (see module docstring).
 
     Parameters
@@ -278,13 +324,18 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
         rough place of the contact set: on the 20-term rubber of the periodic benchmark its
         plain active-set steps cycle between two sets (512²: 167 steps and 1985 products
         before; 28 steps and 335 products now; 1024²: it ran into the 1000-step cap).
-    precondition : bool, optional
-        Precondition the inner solves with the full-space inverse restricted to the contact
+    precondition : bool or "lines", optional
+        ``"lines"``: the line preconditioner (module docstring; one FFT pair per application,
+        counted in ``matvecs``, plus the line solves). ``True``:
+        precondition the inner solves with the full-space inverse restricted to the contact
         set, ``R A^-1 R^T`` (one FFT pair, counted in ``matvecs``); needs
         ``op.pressure_from_displacement``. Default: on for grids of at least
         ``PRECONDITION_MIN_SIZE`` points unless the operator is strongly non-symmetric (symbol
         phase above 45 degrees; its symmetric-part warm start is not preconditioned either):
-        elsewhere it was measured to cost more products than it saves.
+        elsewhere it was measured to cost more products than it saves. :func:`solve_contact`
+        asks for ``"lines"`` for strongly non-symmetric 2-D periodic operators.
+    residual_stall : int, optional
+        Stop (unconverged) once the residual has not reached a new low for this many steps.
     """
     shape = heights.shape
     ht = heights - heights.max()
@@ -301,7 +352,8 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
     strongly_nonsymmetric = _max_phase(op) > np.pi / 4
     if precondition is None:
         precondition = ht.size >= PRECONDITION_MIN_SIZE and not strongly_nonsymmetric
-    precondition = precondition and hasattr(op, "pressure_from_displacement")
+    if precondition != "lines":
+        precondition = precondition and hasattr(op, "pressure_from_displacement")
     final_atol = 0.1 * rtol * h_ref
     matvecs = 0
 
@@ -334,6 +386,7 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
     contact = p > 0
 
     tighten = 1.0
+    line_cache = {}  # the line preconditioner's inverses, kept while a line's contact is unchanged
 
     def newton_point(contact, p, u, eta):
         """Pressure and approach solving the linear problem with ``contact`` as the contact set,
@@ -357,8 +410,14 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
             b -= b.mean()
         atol = max(final_atol * max(np.sqrt(idx.size) * tighten, 1.0), eta * float(np.linalg.norm(b)))
         M = None
-        if precondition:
+        inverse = None
+        if precondition == "lines":  # None where the dense line inverses would be too large
+            inverse = op.line_preconditioner(contact, cache=line_cache)
+            if inverse is not None and load_control:
+                inverse = _projected(inverse)
+        elif precondition:
             inverse = _restricted(op.pressure_from_displacement, idx, shape, load_control)
+        if inverse is not None:
 
             def M(r):
                 nonlocal matvecs
@@ -384,7 +443,10 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
     damped, ascents = not op.is_symmetric, 0
     fewest_changes, stalled = None, 0
 
+    lowest, since_lowest = residual, 0
     while residual > rtol and outer < maxiter and not (stop_when_cycling and stalled >= STALL_LIMIT):
+        if residual_stall is not None and since_lowest >= residual_stall:
+            break
         outer += 1
         new = p - c * g > 0
         if not new.any():
@@ -418,6 +480,7 @@ def _solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8,
         contact = new
         previous = residual
         residual = residual_new if t == 1.0 else complementarity_residual(p, g, p_ref, h_ref)
+        lowest, since_lowest = (residual, 0) if residual < lowest else (lowest, since_lowest + 1)
         if not changed and residual > 0.5 * previous:  # settled but stalled: inner accuracy too low
             tighten *= 0.1
         log.debug("active set %d: %d changes, step %.3g, residual %.3e, contact %.4f, %d products",

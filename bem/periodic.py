@@ -21,6 +21,15 @@ from . import fft
 
 __all__ = ["PeriodicHalfSpace"]
 
+LINE_CHUNK = 32  # x-lines per batched dense inverse in line_preconditioner
+LINE_BUDGET = 2**30  # bytes of dense line inverses (with their cache) line_preconditioner may hold
+
+
+def _chunks(order):
+    """``order`` (line numbers sorted by size) cut into batches of ``LINE_CHUNK``."""
+    order = list(order)
+    return [np.array(order[i: i + LINE_CHUNK]) for i in range(0, len(order), LINE_CHUNK)]
+
 
 class PeriodicHalfSpace:
     """Steady-sliding response operator of a periodic cell, built once and reused.
@@ -52,6 +61,8 @@ class PeriodicHalfSpace:
         qnorm = np.sqrt(sum(c**2 for c in q))
         with np.errstate(divide="ignore"):
             green = np.where(qnorm > 0, 2.0 * material.plane_strain_factor / qnorm, 0.0)
+        self._green = green  # the symbol is green(|q|) * J(-q_x v): an elastic factor and a
+        self._creep = None   # creep factor that acts along x only (see line_preconditioner)
         if material.is_elastic or self.speed == 0.0:
             modulus = material.E0
             self.symbol = green / modulus
@@ -59,6 +70,11 @@ class PeriodicHalfSpace:
         else:
             comp = material.complex_compliance(-qx * self.speed)
             self.symbol = fft.hermitian_multiplier(green * comp, self.shape)
+            if len(self.shape) == 2:
+                creep = np.array(comp[:, 0], dtype=complex)
+                if self.shape[0] % 2 == 0:  # as hermitian_multiplier: real at the x-Nyquist mode
+                    creep[self.shape[0] // 2] = creep[self.shape[0] // 2].real
+                self._creep = creep
             self.is_symmetric = bool(np.all(self.symbol.imag == 0))
             if self.is_symmetric:
                 self.symbol = self.symbol.real
@@ -109,6 +125,87 @@ class PeriodicHalfSpace:
             self._inv = inv
         return inv
 
+    def line_preconditioner(self, contact, cache=None):
+        """Approximate inverse of the operator restricted to ``contact`` (boolean, grid
+        shaped), for strongly non-symmetric 2-D operators; ``None`` where it does not apply.
+
+        The symbol factors as ``a_q = green(|q|) J(-q_x v)``: a symmetric elastic operator
+        ``G`` times the creep operator ``C``, a convolution along x alone (the memory of the
+        material, causal in the sliding direction). With ``R`` the restriction to the
+        contact set, the returned map is ``(R C R^T)^-1 R G^-1 R^T``: ``G`` inverted in full
+        space (one FFT pair), ``C`` inverted *exactly on the contact set*, line by line (each
+        x-line of the set is one small dense system with the line kernel ``c[i - j]``). The
+        restricted creep inverse is what removes the non-normality: ``R C^-1 R^T`` (the full
+        space inverse, i.e. ``R A^-1 R^T``) does not, since the memory of a contact spot
+        reaches the gaps behind it. Unpreconditioned GMRES took 1095 products for 8 decades on
+        the 20-term rubber of the periodic benchmark at 512² (its final contact set), ``R
+        A^-1 R^T`` 397, this one 43. ``cache`` (a dict kept by the caller across Newton
+        points) keeps the inverses of lines whose contact has not changed.
+        """
+        if self._creep is None:
+            return None
+        n0, n1 = self.shape
+        kernel = self.__dict__.get("_line_kernel")
+        if kernel is None:  # c[k]: response at x_i + k of a unit load at x_i (one line)
+            kernel = self._line_kernel = np.fft.ifft(self._creep).real
+        idx = np.flatnonzero(contact)
+        xs, ys = np.divmod(idx, n1)
+        order = np.lexsort((xs, ys))  # by line (y), then along it (x)
+        lines, starts, counts = np.unique(ys[order], return_index=True, return_counts=True)
+        if 2 * 8 * float(np.sum(counts.astype(float) ** 2)) > LINE_BUDGET:
+            return None  # dense line inverses (and their cache) would exceed the budget
+        positions = [order[a: a + c] for a, c in zip(starts, counts)]  # in idx, along x
+        keys = [xs[pos].tobytes() for pos in positions]
+        cache = {} if cache is None else cache
+        inverses = [None] * len(lines)
+        for k, (y, key) in enumerate(zip(lines, keys)):
+            hit = cache.get(y)
+            if hit is not None and hit[0] == key:
+                inverses[k] = hit[1]
+        missing = [k for k in np.argsort(counts, kind="stable") if inverses[k] is None]
+        for chunk in _chunks(missing):
+            m = int(counts[chunk].max())
+            x = np.zeros((len(chunk), m), dtype=int)
+            valid = np.zeros((len(chunk), m), dtype=bool)
+            for row, k in enumerate(chunk):
+                x[row, : counts[k]] = xs[positions[k]]
+                valid[row, : counts[k]] = True
+            mats = kernel[(x[:, :, None] - x[:, None, :]) % n0]
+            mats[~(valid[:, :, None] & valid[:, None, :])] = 0.0
+            rows, cols = np.nonzero(~valid)
+            mats[rows, cols, cols] = 1.0  # padding: identity
+            inv = np.linalg.inv(mats)
+            for row, k in enumerate(chunk):
+                inverses[k] = inv[row, : counts[k], : counts[k]].copy()
+        cache.clear()
+        cache.update((y, (key, inv)) for y, key, inv in zip(lines, keys, inverses))
+        blocks = []
+        for chunk in _chunks(np.argsort(counts, kind="stable")):
+            m = int(counts[chunk].max())
+            mats = np.zeros((len(chunk), m, m))
+            pos = np.full((len(chunk), m), idx.size)  # idx.size: padding, reads a zero
+            for row, k in enumerate(chunk):
+                mats[row, : counts[k], : counts[k]] = inverses[k]
+                pos[row, : counts[k]] = positions[k]
+            valid = pos < idx.size
+            blocks.append((pos, valid, pos[valid], mats))
+        green_inverse = self.__dict__.get("_green_inverse")
+        if green_inverse is None:
+            green_inverse = self._green_inverse = np.zeros_like(self._green)
+            np.divide(1.0, self._green, out=green_inverse, where=self._green != 0)
+        full = np.zeros(self.shape)
+        flat = full.reshape(-1)
+
+        def apply(r):
+            flat[idx] = r
+            w = np.append(np.take(self._multiply(full, green_inverse).reshape(-1), idx), 0.0)
+            z = np.empty_like(r)
+            for pos, valid, dest, inv in blocks:
+                z[dest] = np.matmul(inv, w[pos][:, :, None])[:, :, 0][valid]
+            return z
+
+        return apply
+
     def coarsened(self):
         """The same operator on the grid with half the points per axis (even sides only)."""
         if any(n % 2 for n in self.shape):
@@ -123,6 +220,7 @@ class PeriodicHalfSpace:
         twin.__dict__.pop("_inv", None)
         twin.symbol = np.real(self.symbol).copy()
         twin._symmetric_part = True
+        twin._creep = None
         twin.is_symmetric = True
         return twin
 
