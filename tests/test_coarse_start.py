@@ -25,10 +25,10 @@ def test_prolong_keeps_the_coarse_values_the_mean_and_the_sign(shape):
 def test_no_coarse_start_on_odd_or_small_grids():
     material = bem.Material.elastic(1e7)
     odd = PeriodicHalfSpace((2**18 + 1,), 0.01, material, 0.0)
-    assert contact._coarse_start(odd, np.zeros(odd.shape), {}) == (None, 0.0)
+    assert contact._coarse_start(odd, np.zeros(odd.shape), {}) == (None, 0.0, None)
     small = PeriodicHalfSpace((256, 256), 0.01, material, 0.0)
     assert small.size < contact.COARSEN_MIN_SIZE
-    assert contact._coarse_start(small, np.zeros(small.shape), {}) == (None, 0.0)
+    assert contact._coarse_start(small, np.zeros(small.shape), {}) == (None, 0.0, None)
 
 
 @pytest.mark.parametrize("material", [

@@ -109,5 +109,4 @@ def test_line_attempt_that_stalls_falls_back(monkeypatch):
     monkeypatch.setattr(contact, "RESIDUAL_STALL", 0)
     r = bem.solve(s, RUBBER, **kw)
     assert r.success and "after a first attempt of 1 " in r.message
-    assert r.iterations > reference.iterations - 1
     np.testing.assert_allclose(r.pressure, reference.pressure, rtol=0, atol=1e-6 * reference.pressure.max())
