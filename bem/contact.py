@@ -36,7 +36,8 @@ contact set, one x-line at a time. ``R A^-1 R^T`` does not help them (benchmark 
 without it); the line preconditioner does: GMRES on the rubber's final 512² contact set took
 1095 products unpreconditioned and 43 with it, and in the periodic benchmark whole solves
 went from 1615 to 961 products (512², 8.3 s -> 6.5 s) and from 3836 to 1604 (1024², 102 s ->
-51 s); 2048² now solves in 510 s (3730 products, 2.2 GiB). Its dense line inverses cost
+51 s); with the nested start's first set and the guarded steps below, 1173 products and 38 s
+at 1024², and 2048² (skipped before: over 1000 s) solves in 253 s (1572 products, 2.1 GiB). Its dense line inverses cost
 ``sum m^3`` flops per Newton point (``m`` contact points on a line; lines whose contact did
 not change keep theirs) and at most ``bem.periodic.LINE_BUDGET`` = 1 GiB (otherwise the
 solve goes unpreconditioned). Such a line-preconditioned
