@@ -219,8 +219,7 @@ def _solve_twice(op, heights, maxiter, kwargs):
     """The fast attempt, then if needed the careful one (see :func:`solve_contact`)."""
     # strongly non-symmetric operators (phase > 45 degrees) go straight to the careful strategy
     careful = _max_phase(op) > np.pi / 4
-    lines = (careful and LINES and kwargs.get("precondition") is None
-             and op.__dict__.get("_creep") is not None)
+    lines = careful and LINES and kwargs.get("precondition") is None and getattr(op, "factors_along_x", False)
     if lines:
         first = _solve_contact(op, heights, raise_on_failure=False, maxiter=maxiter, relax_inner=False,
                                precondition="lines", residual_stall=RESIDUAL_STALL, guard=True, **kwargs)
@@ -261,11 +260,10 @@ def _restricted(apply, idx, shape, project):
     z_flat = z_full.reshape(-1)  # a view: scatter/gather by index, not by mask
 
     def f(z):
-        z_flat[idx] = z - z.mean() if project else z
-        out = np.take(apply(z_full).reshape(-1), idx)
-        return out - out.mean() if project else out
+        z_flat[idx] = z
+        return np.take(apply(z_full).reshape(-1), idx)
 
-    return f
+    return _projected(f) if project else f
 
 
 def _projected(f):

@@ -25,6 +25,13 @@ LINE_CHUNK = 32  # x-lines per batched dense inverse in line_preconditioner
 LINE_BUDGET = 2**30  # bytes of dense line inverses (with their cache) line_preconditioner may hold
 
 
+def _reciprocal(a):
+    """``1 / a`` where ``a != 0``, else 0 (the mean mode of a symbol)."""
+    out = np.zeros_like(a)
+    np.divide(1.0, a, out=out, where=a != 0)
+    return out
+
+
 def _chunks(order):
     """``order`` (line numbers sorted by size) cut into batches of ``LINE_CHUNK``."""
     order = list(order)
@@ -119,11 +126,13 @@ class PeriodicHalfSpace:
         """``1 / a_q`` (0 for the mean mode), computed once."""
         inv = self.__dict__.get("_inv")
         if inv is None:
-            nonzero = self.symbol != 0
-            inv = np.zeros_like(self.symbol)
-            np.divide(1.0, self.symbol, out=inv, where=nonzero)
-            self._inv = inv
+            inv = self._inv = _reciprocal(self.symbol)
         return inv
+
+    @property
+    def factors_along_x(self):
+        """Whether :meth:`line_preconditioner` applies: a viscoelastic 2-D operator in motion."""
+        return self._creep is not None
 
     def line_preconditioner(self, contact, cache=None):
         """Approximate inverse of the operator restricted to ``contact`` (boolean, grid
@@ -142,7 +151,7 @@ class PeriodicHalfSpace:
         A^-1 R^T`` 397, this one 43. ``cache`` (a dict kept by the caller across Newton
         points) keeps the inverses of lines whose contact has not changed.
         """
-        if self._creep is None:
+        if not self.factors_along_x:
             return None
         n0, n1 = self.shape
         kernel = self.__dict__.get("_line_kernel")
@@ -191,8 +200,7 @@ class PeriodicHalfSpace:
             blocks.append((pos, valid, pos[valid], mats))
         green_inverse = self.__dict__.get("_green_inverse")
         if green_inverse is None:
-            green_inverse = self._green_inverse = np.zeros_like(self._green)
-            np.divide(1.0, self._green, out=green_inverse, where=self._green != 0)
+            green_inverse = self._green_inverse = _reciprocal(self._green)
         full = np.zeros(self.shape)
         flat = full.reshape(-1)
 
