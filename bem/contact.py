@@ -46,6 +46,11 @@ steps, and the solve is redone without it: one case of the 32² robustness sweep
 ``E_inf/E0`` 1e4, xi = 1, near full contact) cycles with it and converges without (55 steps);
 the sweep as a whole went from 73082 products to 59672 (with the guarded steps below in both
 attempts; that case 42411 -> 33284).
+The line-preconditioned attempt solves its inner systems to ``LINES_ETA`` = 0.01 of the
+right-hand side (not 0.1): looser Newton points sent the rubber's finer grids into long
+runs of damped steps (step 0.25, 20-40 steps). Rubber, products with 0.1 -> 0.01: 256²
+563 -> 596, 512² 401 -> 624, 1024² 1626 -> 633 (39 s -> 18 s), 2048² 1572 -> 627 (253 s ->
+117 s); 0.03 gave 506 at 512², 675 at 1024² and 1430 at 2048².
 
 First iterate. On grids of at least ``COARSEN_MIN_SIZE`` = 2^18 points (512²) with even
 sides: the same problem solved on the grid with half the points per axis (to
@@ -101,6 +106,7 @@ log = logging.getLogger(__name__)
 PRECONDITION_MIN_SIZE = 2**17  # grid points; see the module docstring
 ATOL_FLOOR = 1e-3  # stalled inner solves tighten down to this share of final_atol (module docstring)
 LINES = True  # line-preconditioned first attempt for strongly non-symmetric 2-D operators
+LINES_ETA = 0.01  # inner forcing term of that attempt (module docstring)
 RESIDUAL_STALL = 30  # steps without a new low in the residual that end that attempt
 STALL_LIMIT = 5  # steps without a new low in set changes that count as cycling
 COARSEN = True  # start large grids from the next coarser grid (module docstring)
@@ -222,7 +228,8 @@ def _solve_twice(op, heights, maxiter, kwargs):
     lines = careful and LINES and kwargs.get("precondition") is None and getattr(op, "factors_along_x", False)
     if lines:
         first = _solve_contact(op, heights, raise_on_failure=False, maxiter=maxiter, relax_inner=False,
-                               precondition="lines", residual_stall=RESIDUAL_STALL, guard=True, **kwargs)
+                               precondition="lines", residual_stall=RESIDUAL_STALL, guard=True,
+                               **{"inner_eta": LINES_ETA, **kwargs})
         if first.success or maxiter < 2:
             return first
         log.info("retrying without the line preconditioner: %s", first.message)
