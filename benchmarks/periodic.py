@@ -23,7 +23,7 @@ rubber at n = 128) so that the elastic case and the rubber each have about 10 % 
 the contact fractions reached at every size are reported. The rubber's active-set iteration
 cap is raised from bem.solve's default 100 to 1000 (see ``MAXITER``): at 10 % contact it
 needed more than 100 before the line preconditioner (17-31 now, counted over all levels of the
-nested iteration). ``conv`` in the table is the convergence of the default/tight solve.
+nested iteration; 13-16 with its inner solves at 1 % since git 743c656). ``conv`` in the table is the convergence of the default/tight solve.
 The cases run on a snapshot of ``bem/`` copied when the run starts (its SHA-256 and git
 head are in the JSON), so edits to the working tree during a run do not mix versions. Each
 case runs in a fresh process (BLAS pinned to 1 thread, FFTs on all cores): solve at
@@ -71,7 +71,7 @@ REPEATS, REPEAT_BUDGET = 3, 30.0
 FULL_SIZES, QUICK_SIZES = (256, 512, 1024, 2048), (128, 256)
 CASES = ("elastic", "seed", "rubber20")
 # active-set iteration cap: bem.solve's default (100) for the elastic and seed cases; the
-# rubber at ~10 % contact needed ~120 at n = 256 before the line preconditioner (17 now); the
+# rubber at ~10 % contact needed ~120 at n = 256 before the line preconditioner (15 now); the
 # raised cap keeps older solver versions measurable
 MAXITER = {"elastic": 100, "seed": 100, "rubber20": 1000}
 CALIBRATION_N = {"elastic": 256, "rubber20": 128}
