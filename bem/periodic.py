@@ -190,7 +190,7 @@ class PeriodicHalfSpace:
         """
         if not self.factors_along_x:
             return None
-        n0, n1 = self.shape
+        n1 = self.shape[1]
         kernel = self.__dict__.get("_line_kernel")
         if kernel is None:  # c[k]: response at x_i + k of a unit load at x_i (one line)
             c = np.fft.ifft(self._creep).real
