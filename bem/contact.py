@@ -77,8 +77,8 @@ residual (max norm), else the best shorter one: full steps that raised the resid
 rubber's 1024² set wandering (thousands of changes a step; 1655 -> 1250 products). Not
 elsewhere: the isolated rolling cylinder with ``E_inf/E0`` = 100 (1-D) then no longer
 converged in 400 steps. A damped step (outside the line-preconditioned attempt) tightens the
-inner tolerance (x0.1, to 1e-4) only once the set is nearly settled (at most ``TIGHTEN_CHANGES`` = 100 changes or
-``TIGHTEN_SHARE`` = 1 % of the set): earlier, damping comes from the set, not from loose
+inner tolerance (x0.1, to 1e-4) only once the set is nearly settled (at most
+``TIGHTEN_CHANGES`` = 100 changes or ``TIGHTEN_SHARE`` = 1 % of the set): earlier, damping comes from the set, not from loose
 inner solves, and tight GMRES solves there cost hundreds of products each (rubber, 512²
 without the coarse start: 2883 -> 1837 products; 32² robustness sweep 90829 -> 73082).
 

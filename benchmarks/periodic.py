@@ -23,7 +23,8 @@ rubber at n = 128) so that the elastic case and the rubber each have about 10 % 
 the contact fractions reached at every size are reported. The rubber's active-set iteration
 cap is raised from bem.solve's default 100 to 1000 (see ``MAXITER``): at 10 % contact it
 needed more than 100 before the line preconditioner (then 17-31, and 13-16 since its inner
-solves go to 1 %, git 743c656; counted over all levels of the nested iteration). ``conv`` in the table is the convergence of the default/tight solve.
+solves go to 1 %, git 743c656; counted over all levels of the nested iteration). ``conv`` in
+the table is the convergence of the default/tight solve.
 The cases run on a snapshot of ``bem/`` copied when the run starts (its SHA-256 and git
 head are in the JSON), so edits to the working tree during a run do not mix versions. Each
 case runs in a fresh process (BLAS pinned to 1 thread, FFTs on all cores): solve at
