@@ -80,7 +80,11 @@ class PeriodicHalfSpace:
     ----------
     symbol : ndarray
         ``a_q`` on the half spectrum (m/Pa); real for elastic solids or zero speed.
+    dtype : numpy.dtype
+        Precision of the products: float64, or float32 for :meth:`single_precision`.
     """
+
+    dtype = np.dtype(np.float64)
 
     def __init__(self, shape, length, material, speed):
         self.shape = tuple(shape)
@@ -140,9 +144,10 @@ class PeriodicHalfSpace:
         return self._multiply(displacement, self._inverse_symbol())
 
     def _multiply(self, field, multiplier):
-        """Real-space action of a Fourier multiplier; the spectrum is a temporary, so the
-        multiplication and the inverse transform's first pass work in place."""
-        fq = fft.forward(field)
+        """Real-space action of a Fourier multiplier, in the precision ``self.dtype``; the
+        spectrum is a temporary, so the multiplication and the inverse transform's first
+        pass work in place."""
+        fq = fft.forward(np.asarray(field, dtype=self.dtype))
         fq *= multiplier
         return fft.inverse(fq, self.shape, overwrite=True)
 
@@ -239,7 +244,7 @@ class PeriodicHalfSpace:
         green_inverse = self.__dict__.get("_green_inverse")
         if green_inverse is None:
             green_inverse = self._green_inverse = _reciprocal(self._green)
-        full = np.zeros(self.shape)
+        full = np.zeros(self.shape, dtype=self.dtype)
         flat = full.reshape(-1)
 
         def apply(r):
@@ -278,11 +283,29 @@ class PeriodicHalfSpace:
         coarse = PeriodicHalfSpace(tuple(n // 2 for n in self.shape), self.length, self.material, self.speed)
         return coarse.symmetric_part() if self.__dict__.get("_symmetric_part") else coarse
 
+    def single_precision(self):
+        """The same operator with its products in single precision (float32 fields,
+        complex64 spectra), for the contact solver's inner Krylov solves: see
+        :data:`bem.contact.SINGLE_PRECISION_INNER`. Built once and kept."""
+        twin = self.__dict__.get("_single")
+        if twin is None:
+            twin = object.__new__(PeriodicHalfSpace)
+            twin.__dict__.update(self.__dict__)
+            twin.dtype = np.dtype(np.float32)
+            spectrum = np.complex64 if np.iscomplexobj(self.symbol) else np.float32
+            twin.symbol = self.symbol.astype(spectrum)
+            twin._green = self._green.astype(np.float32)
+            for name in ("_inv", "_green_inverse"):  # recomputed from the single symbols
+                twin.__dict__.pop(name, None)
+            self._single = twin
+        return twin
+
     def symmetric_part(self):
         """Operator with the symbol's real part: the symmetric part of this operator."""
         twin = object.__new__(PeriodicHalfSpace)
         twin.__dict__.update(self.__dict__)
         twin.__dict__.pop("_inv", None)
+        twin.__dict__.pop("_single", None)
         twin.symbol = np.real(self.symbol).copy()
         twin._symmetric_part = True
         twin._creep = None
