@@ -283,29 +283,32 @@ class PeriodicHalfSpace:
         coarse = PeriodicHalfSpace(tuple(n // 2 for n in self.shape), self.length, self.material, self.speed)
         return coarse.symmetric_part() if self.__dict__.get("_symmetric_part") else coarse
 
+    def _twin(self, *stale):
+        """A copy sharing this operator's arrays, without the caches named in ``stale`` (and
+        without its single-precision twin): for operators that change a symbol."""
+        twin = object.__new__(PeriodicHalfSpace)
+        twin.__dict__.update(self.__dict__)
+        for name in ("_single",) + stale:
+            twin.__dict__.pop(name, None)
+        return twin
+
     def single_precision(self):
         """The same operator with its products in single precision (float32 fields,
         complex64 spectra), for the contact solver's inner Krylov solves: see
         :data:`bem.contact.SINGLE_PRECISION_INNER`. Built once and kept."""
         twin = self.__dict__.get("_single")
         if twin is None:
-            twin = object.__new__(PeriodicHalfSpace)
-            twin.__dict__.update(self.__dict__)
+            twin = self._twin("_inv", "_green_inverse")  # recomputed from the single symbols
             twin.dtype = np.dtype(np.float32)
             spectrum = np.complex64 if np.iscomplexobj(self.symbol) else np.float32
             twin.symbol = self.symbol.astype(spectrum)
             twin._green = self._green.astype(np.float32)
-            for name in ("_inv", "_green_inverse"):  # recomputed from the single symbols
-                twin.__dict__.pop(name, None)
             self._single = twin
         return twin
 
     def symmetric_part(self):
         """Operator with the symbol's real part: the symmetric part of this operator."""
-        twin = object.__new__(PeriodicHalfSpace)
-        twin.__dict__.update(self.__dict__)
-        twin.__dict__.pop("_inv", None)
-        twin.__dict__.pop("_single", None)
+        twin = self._twin("_inv")
         twin.symbol = np.real(self.symbol).copy()
         twin._symmetric_part = True
         twin._creep = None
