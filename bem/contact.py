@@ -45,7 +45,11 @@ attempt gives up once its residual has not reached a new low for ``RESIDUAL_STAL
 steps, and the solve is redone without it: one case of the 32² robustness sweep (SLS,
 ``E_inf/E0`` 1e4, xi = 1, near full contact) cycles with it and converges without (55 steps);
 the sweep as a whole went from 73082 products to 59672 (with the guarded steps below in both
-attempts; that case 42411 -> 33284).
+attempts; that case 42411 -> 33284). The attempt may also take at most
+``LINES_MAXITER_SHARE`` = half of ``maxiter``: the same material at 128² (xi = 1, a few
+contact spots) creeps in it without stalling (steps of 1/16-1/64, residual 6e2 -> 0.8 in 400
+steps) and used to fail; with the rest of ``maxiter`` the second attempt converges (72 steps,
+134k products, 280 s).
 The line-preconditioned attempt solves its inner systems to ``LINES_ETA`` = 0.01 of the
 right-hand side (not 0.1): looser Newton points sent the rubber's finer grids into long
 runs of damped steps (step 0.25, 20-40 steps). Rubber, products with 0.1 -> 0.01: 256²
@@ -136,6 +140,7 @@ ATOL_FLOOR = 1e-3  # stalled inner solves tighten down to this share of final_at
 LINES = True  # line-preconditioned first attempt for strongly non-symmetric 2-D operators
 LINES_ETA = 0.01  # inner forcing term of that attempt (module docstring)
 RESIDUAL_STALL = 30  # steps without a new low in the residual that end that attempt
+LINES_MAXITER_SHARE = 0.5  # ... as does this share of maxiter (module docstring)
 STALL_LIMIT = 5  # steps without a new low in set changes that count as cycling
 COARSEN = True  # start large grids from the next coarser grid (module docstring)
 COARSEN_MIN_SIZE = 2**18  # grid points
@@ -260,7 +265,8 @@ def _solve_twice(op, heights, maxiter, kwargs):
     careful = _max_phase(op) > np.pi / 4
     lines = careful and LINES and kwargs.get("precondition") is None and getattr(op, "factors_along_x", False)
     if lines:
-        first = _solve_contact(op, heights, raise_on_failure=False, maxiter=maxiter, relax_inner=False,
+        first = _solve_contact(op, heights, raise_on_failure=False, relax_inner=False,
+                               maxiter=max(1, int(LINES_MAXITER_SHARE * maxiter)),
                                precondition="lines", residual_stall=RESIDUAL_STALL, guard=True,
                                **{"inner_eta": LINES_ETA, **kwargs})
         if first.success or maxiter < 2:
