@@ -573,14 +573,18 @@ def run(quick: bool = False, out_dir=None, sizes=None, *, tamaas=True, tamaas_to
                       f"{TAMAAS_MAX_ITER}; wall_time includes model and solver construction"},
         "cases": cases, "tamaas": tamaas_runs, "targets": targets, "notes": notes,
     }
-    text = _report(result)
-    echo(text)
+    publish(result, _report, out_dir, "periodic", echo)
+    return result
+
+
+def publish(result, report, out_dir, stem, echo=print):
+    """Print ``report(result)``; with ``out_dir``, write ``stem.json`` and ``stem.md`` there."""
+    echo(report(result))
     if out_dir is not None:
         out = Path(out_dir)
         out.mkdir(parents=True, exist_ok=True)
-        (out / "periodic.json").write_text(json.dumps(result, indent=2, default=float) + "\n")
-        (out / "periodic.md").write_text(_report(result, markdown=True) + "\n")
-    return result
+        (out / f"{stem}.json").write_text(json.dumps(result, indent=2, default=float) + "\n")
+        (out / f"{stem}.md").write_text(report(result, markdown=True) + "\n")
 
 
 def _more_rounds(cases, tamaas_runs, heights_file, loads, env, echo):

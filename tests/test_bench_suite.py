@@ -42,3 +42,25 @@ def test_registry_entries_are_complete():
     for entry in suite.REGISTRY.values():
         assert entry.knobs and callable(entry.measure)
         assert list(entry.groups(True))  # a quick run has work in every entry
+
+
+def test_rubber_speeds_benchmark_runs_from_the_cli(tmp_path):
+    """`viscobem bench rubber_speeds` writes its table; at a rubbery speed (symbol phase near 0)
+    the rubber costs about what the elastic case does, at xi = 1e4 (1000x stiffness contrast
+    between the q_x = 0 modes and the sliding ones) several times more (64²: 58 and 437
+    products against 62)."""
+    import json
+
+    from benchmarks import rubber_speeds
+    from viscobem_cli.main import main
+
+    assert main(["bench", "rubber_speeds", "--quick", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "rubber_speeds.json").read_text())
+    assert "| case | xi |" in (tmp_path / "rubber_speeds.md").read_text()
+    rows = {r["xi"]: r for r in result["rows"]}
+    n = str(rubber_speeds.QUICK_SIZES[0])
+    assert all(r["by_n"][m]["success"] for r in result["rows"] for m in r["by_n"])
+    assert all(abs(r["by_n"][n]["contact_fraction"] - 0.1) < 0.01 for r in result["rows"])
+    elastic = rows[None]["by_n"][n]["matvecs"]
+    assert rows[1e-4]["max_phase_deg"] < 5 and rows[1e-4]["by_n"][n]["matvecs"] < 1.5 * elastic
+    assert rows[1e4]["max_phase_deg"] < 45 and rows[1e4]["by_n"][n]["matvecs"] > 3 * elastic

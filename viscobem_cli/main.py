@@ -7,6 +7,7 @@
     viscobem bench [--quick] --out DIR        run time against error of every solver, scaling,
                                               skipping; regenerates README's bench table
     viscobem bench periodic|fem|isolated [--quick] --out DIR   one solver's detailed benchmark
+    viscobem bench rubber_speeds [--quick] --out DIR   the periodic benchmark's rubber over speed
     viscobem scene                            print the built-in default scene
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
@@ -146,7 +147,7 @@ def build_parser():
     scene = sub.add_parser("scene", help="print the built-in default scene (a template)")
     scene.set_defaults(func=_cmd_scene)
     bench = sub.add_parser("bench", help="run a benchmark")
-    bench.add_argument("name", nargs="?", default="all", choices=["all", "periodic", "fem", "isolated"],
+    bench.add_argument("name", nargs="?", default="all", choices=["all", "periodic", "fem", "isolated", "rubber_speeds"],
                        help="all (default: every solver, scaling, skipping) or one detailed benchmark")
     bench.add_argument("--readme", default=None, help="README whose bench table to regenerate "
                        "(default: the project's README.md)")
