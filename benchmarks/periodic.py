@@ -113,8 +113,29 @@ def surface_heights(n):
 
 
 # ---------------------------------------------------------------- work done in fresh processes
-def _calibrate_worker(heights_paths, tol=0.003, steps=6):
-    """Loads (N) giving ~TARGET_CONTACT for each case (secant steps in log-log).
+def load_for_contact(surface, material, speed, load, *, maxiter, tol=0.003, steps=6):
+    """Secant steps in log-log from ``load`` (N) toward ``TARGET_CONTACT`` (within ``tol``),
+    each a solve at rtol 1e-6; returns the history ``[(load N, contact, converged)]``, whose
+    last load is the answer."""
+    history = []
+    for _ in range(steps):
+        res = bem.solve(surface, material, speed=speed, load=load, rtol=1e-6, maxiter=maxiter,
+                        raise_on_failure=False)
+        frac = res.contact_fraction
+        history.append((load, frac, res.success))
+        if abs(frac - TARGET_CONTACT) <= tol:
+            break
+        if len(history) == 1:
+            load *= TARGET_CONTACT / max(frac, 1e-3)
+        else:
+            (l0, f0, _), (l1, f1, _) = history[-2:]
+            slope = np.log(f1 / f0) / np.log(l1 / l0) if l1 != l0 and f1 != f0 and f0 > 0 else 1.0
+            load = l1 * (TARGET_CONTACT / max(f1, 1e-3)) ** (1.0 / max(slope, 0.2))
+    return history
+
+
+def _calibrate_worker(heights_paths):
+    """Loads (N) giving ~TARGET_CONTACT for each case (:func:`load_for_contact`).
 
     ``heights_paths[name]`` is the grid each is calibrated on (``CALIBRATION_N``).
     """
@@ -127,20 +148,7 @@ def _calibrate_worker(heights_paths, tol=0.003, steps=6):
         material, speed = mats[name]
         surface = bem.surfaces.from_heights(np.load(heights_paths[name]), LENGTH)
         load = guess if name == "elastic" else guess * material.E0 / E_ELASTIC
-        history = []
-        for _ in range(steps):
-            res = bem.solve(surface, material, speed=speed, load=load, rtol=1e-6, maxiter=MAXITER[name],
-                            raise_on_failure=False)
-            frac = res.contact_fraction
-            history.append((load, frac, res.success))
-            if abs(frac - TARGET_CONTACT) <= tol:
-                break
-            if len(history) == 1:
-                load *= TARGET_CONTACT / frac
-            else:
-                (l0, f0, _), (l1, f1, _) = history[-2:]
-                slope = np.log(f1 / f0) / np.log(l1 / l0) if l1 != l0 and f1 != f0 else 1.0
-                load = l1 * (TARGET_CONTACT / f1) ** (1.0 / max(slope, 0.2))
+        history = load_for_contact(surface, material, speed, load, maxiter=MAXITER[name])
         out[name] = {"n": surface.n, "load": history[-1][0], "contact_fraction": history[-1][1],
                      "history (load N, contact, converged)": history}
     return out
