@@ -32,6 +32,7 @@ from .errors import ConvergenceError, InputError
 from .isolated import IsolatedHalfSpace
 from .material import Material
 from .periodic import PeriodicHalfSpace
+from .result import SlidingResult
 from .surfaces import Surface
 
 __all__ = ["SlidingResult", "FrictionCurve", "solve", "friction_curve"]
@@ -40,61 +41,6 @@ log = logging.getLogger(__name__)
 
 _CACHE_SIZE = 4
 _operators = {}
-
-
-@dataclass(frozen=True, eq=False)
-class SlidingResult:
-    """Steady sliding contact solution (arrays shaped like the heights).
-
-    Attributes
-    ----------
-    pressure : ndarray
-        Contact pressure (Pa), >= 0.
-    displacement : ndarray
-        Normal surface displacement (m, positive into the solid). Periodic cells: zero mean
-        (the periodic half-space has no defined mean displacement; the approach carries it).
-        Isolated 2-D contacts: absolute (zero at infinity); isolated profiles: up to the
-        constant of plane strain (see :mod:`bem.isolated`).
-    gap : ndarray
-        ``displacement - (h - max(h) + approach)`` (m), >= 0, zero in contact.
-    approach : float
-        Rigid approach from first touch (m): relative to the mean plane of the deformed
-        surface on periodic cells, to the undeformed surface far away for isolated 2-D
-        contacts, and with the displacement's constant for isolated profiles.
-    contact_fraction : float
-        Fraction of the cell (isolated contacts: of the domain) in contact (``pressure > 0``).
-    friction, friction_eq6 : float
-        Viscoelastic friction coefficient, dissipation form and eq. 6 (see module doc).
-    dissipated_power : float
-        ``friction * load * speed`` (W; W/m for profiles).
-    load, speed : float
-        Normal force (N; N/m for profiles) and sliding speed (m/s).
-    iterations, matvecs : int
-        Active-set iterations and operator applications (FFT pairs).
-    residual : float
-        Complementarity residual reached (see :mod:`bem.contact`).
-    success : bool
-    message : str
-    wall_time : float
-        Seconds spent in the solve.
-    """
-
-    pressure: np.ndarray
-    displacement: np.ndarray
-    gap: np.ndarray
-    approach: float
-    contact_fraction: float
-    friction: float
-    friction_eq6: float
-    dissipated_power: float
-    load: float
-    speed: float
-    iterations: int
-    matvecs: int
-    residual: float
-    success: bool
-    message: str
-    wall_time: float = 0.0
 
 
 def _as_surface(surface):
@@ -124,7 +70,16 @@ def operator_for(surface, material, speed, periodic=True):
     return op
 
 
-def _check_inputs(surface, material, speed, load, approach, rtol):
+def clear_operator_cache():
+    """Forget the response operators :func:`operator_for` keeps (the last few grids, materials and
+    speeds), e.g. to time an operator's construction or to free its memory."""
+    _operators.clear()
+
+
+def check_inputs(surface, material, speed, load, approach, rtol):
+    """Validate the arguments :func:`solve` shares with every caller that plans solves ahead
+    (e.g. a study checking its range before it writes anything); return them converted,
+    ``(surface, speed, load, approach, rtol)``. Raises :class:`~bem.errors.InputError`."""
     surface = _as_surface(surface)
     if not isinstance(material, Material):
         raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
@@ -149,8 +104,8 @@ _PERIODIC_METHODS = ("auto", "active-set")
 def _choose_isolated_method(surface, material, *, speed, load, rtol):
     """The isolated-contact method that ``method="auto"`` selects: ``"uniform"`` or ``"adaptive"``.
 
-    Always the uniform DC-FFT grid, the faster one in ``benchmarks/isolated.py`` (tables:
-    ``benchmarks/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
+    Always the uniform DC-FFT grid, the faster one in ``viscobem_bench/isolated.py`` (tables:
+    ``viscobem_bench/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
     dates and machine load, 2 shared cores at load 6-8, bem/ frozen for each run; figures
     ``isolated_pareto*.png``). Problems: rolling cylinder vs Hunter and sliding sphere vs a
     Richardson-extrapolated reference, each at ``V lambda / a0 = 0.3, 1, 5``, plus the sphere
@@ -207,7 +162,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     -------
     SlidingResult
     """
-    surface, speed, load, approach, rtol = _check_inputs(surface, material, speed, load, approach, rtol)
+    surface, speed, load, approach, rtol = check_inputs(surface, material, speed, load, approach, rtol)
     if not isinstance(periodic, (bool, np.bool_)):
         raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {periodic!r}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
@@ -223,7 +178,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
         if load is None:
             raise InputError("approach (displacement control) is not available with method='adaptive'; "
                              "give load (N, or N/m for profiles)")
-        from .adaptive import solve_adaptive
+        from .adaptive.solver import solve_adaptive
 
         return solve_adaptive(surface, material, speed=speed, load=load, rtol=rtol, maxiter=maxiter,
                               raise_on_failure=raise_on_failure, **adaptive_options)
@@ -331,7 +286,7 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
         raise InputError(f"speeds must be a list of numbers (m/s), got {speeds!r}") from None
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
         raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {speeds!r}")
-    surface, _, load, _, rtol = _check_inputs(surface, material, 0.0, load, None, rtol)
+    surface, _, load, _, rtol = check_inputs(surface, material, 0.0, load, None, rtol)
     from tqdm.auto import tqdm
 
     n = speeds.size

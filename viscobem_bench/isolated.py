@@ -19,13 +19,13 @@ Solvers: ``bem.solve(..., periodic=False, method="uniform")`` over a range of gr
 ``bem.adaptive.solve_adaptive`` over fine grids and refinement levels (coarse mesh of 32
 strips, or 8 x 8 squares). Error = max(|friction/ref - 1|, |peak pressure/ref - 1|), with
 ``friction`` the dissipation form of each solver. Each case runs in a fresh interpreter with
-BLAS threads pinned to 1 (:mod:`benchmarks._measure`); wall time is that of the solve call
+BLAS threads pinned to 1 (:mod:`viscobem_bench._measure`); wall time is that of the solve call
 (kernel construction included, imports excluded); memory is the child's peak RSS.
 
 Outputs: ``DIR/isolated_benchmark.json`` (all cases, Pareto fronts, the fastest method per
 requested tolerance), ``DIR/isolated_pareto.png`` (error against time, log-log, per problem).
 
-Run: ``python -m benchmarks.isolated [--quick] --out DIR`` or ``viscobem bench isolated``.
+Run: ``python -m viscobem_bench.isolated [--quick] --out DIR`` or ``viscobem bench isolated``.
 """
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ import time
 
 import numpy as np
 
-from benchmarks._measure import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
+from viscobem_bench._measure import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
 
 RADIUS = 0.01
 LOADS = {"cylinder": 1000.0, "sphere": 1.0, "sphere-wide": 1.0, "sphere-xwide": 1.0}

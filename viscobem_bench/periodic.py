@@ -1,6 +1,6 @@
 """Benchmark of the periodic FFT BEM solver (issue 2): time, iterations, memory and accuracy.
 
-Run it with ``python -m benchmarks.periodic [--quick] [--sizes 256 512 ...] --out DIR``
+Run it with ``python -m viscobem_bench.periodic [--quick] [--sizes 256 512 ...] --out DIR``
 (``viscobem bench periodic`` calls :func:`run`). It prints a table and writes
 ``DIR/periodic.json`` and ``DIR/periodic.md``.
 
@@ -59,7 +59,7 @@ import scipy
 
 import bem
 from bem import fft
-from benchmarks import _measure
+from viscobem_bench import _measure
 
 LENGTH = 0.01  # m, cell side (seed)
 SURFACE = dict(hurst=0.8, scales=64, rms_slope=0.1, seed=1)
@@ -167,7 +167,7 @@ def _case_worker(spec):
     maxiter = spec.get("maxiter") or MAXITER[spec["case"]]
 
     def default_solve():  # each building its operator afresh
-        bem.sliding._operators.clear()
+        bem.sliding.clear_operator_cache()
         return bem.solve(surface, material, speed=speed, load=spec["load"], rtol=RTOL,
                          maxiter=maxiter, raise_on_failure=False)
 
@@ -666,7 +666,7 @@ def profile(case="elastic", n=1024, out_dir=None, echo=print):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m benchmarks.periodic", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m viscobem_bench.periodic", description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="n = 128, 256 only (smoke test, < 1 min)")
     parser.add_argument("--sizes", type=int, nargs="+", help="grid sizes (default 256 512 1024 2048)")
     parser.add_argument("--out", default=None, help="directory for periodic.json and periodic.md")
