@@ -21,6 +21,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from . import fft
+from .parallel import get_threads
 
 __all__ = ["PeriodicHalfSpace"]
 
@@ -31,13 +32,11 @@ _POOL = None  # (pid, workers), executor: see _run
 
 
 def _run(func, items):
-    """``func(item)`` for every item, on as many threads as :mod:`bem.fft` uses cores
-    (``fft.WORKERS``; 1 runs them here). For the line preconditioner's batched inverses and
+    """``func(item)`` for every item, on :func:`bem.parallel.get_threads` threads (1 runs them
+    here). For the line preconditioner's batched inverses and
     products: numpy releases the GIL in both, and BLAS itself stays single-threaded."""
     global _POOL
-    workers = fft.WORKERS
-    if workers is None or workers < 1:
-        workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    workers = get_threads()
     if workers == 1 or len(items) < 2:
         for item in items:
             func(item)

@@ -547,8 +547,8 @@ def run(quick: bool = False, out_dir=None, sizes=None, *, tamaas=True, tamaas_to
                     "numpy": np.__version__, "scipy": scipy.__version__, "tamaas": tamaas_version,
                     "load_average_1min_start": load_start, "load_average_1min_end": _measure.load_average()},
         "threads": {"child_environment": ours_env, "tamaas_omp_threads": tamaas_threads or "fastest of 1 and all cores (see tamaas[].omp_threads)",
-                    "fft_workers": fft.WORKERS, "note": "each case in a fresh spawned process; "
-                    "BLAS pinned to 1 thread; scipy.fft workers=-1 uses all cores"},
+                    "fft_workers": bem.get_threads(), "note": "each case in a fresh spawned process; "
+                    "BLAS pinned to 1 thread; FFTs on bem.get_threads() threads (all cores)"},
         "problem": {"length_m": LENGTH, "surface": dict(SURFACE, generated_on=BASE_N, resampling="exact"),
                     "xi": XI, "rtol": RTOL, "rtol_reference": RTOL_REF, "maxiter": MAXITER, "loads_N": loads,
                     "calibration": calib, "target_contact_fraction": TARGET_CONTACT,
