@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import fft
-from .checks import check_array, check_int, check_positive
+from .checks import check_array, check_int, check_keywords, check_positive, show
 from .contact import solve_contact
 from .errors import ConvergenceError, InputError
 from .isolated import IsolatedHalfSpace
@@ -93,11 +93,15 @@ def check_inputs(surface, material, speed, load, approach, rtol):
         approach = check_positive("approach", approach)
     rtol = check_positive("rtol", rtol)
     if rtol >= 1:
-        raise InputError(f"rtol must be in (0, 1), got {rtol!r}")
+        raise InputError(f"rtol must be in (0, 1), got {show(rtol)}")
     return surface, speed, load, approach, rtol
 
 
 _ISOLATED_METHODS = ("auto", "uniform", "adaptive")
+# keywords of bem.adaptive.solve_adaptive that solve() passes on with method="adaptive"
+ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling", "height", "max_elements")
+_SOLVE_KEYWORDS = ("speed", "load", "approach", "periodic", "method", "rtol", "maxiter", "initial",
+                   "raise_on_failure")
 _PERIODIC_METHODS = ("auto", "active-set")
 
 
@@ -161,17 +165,40 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     Returns
     -------
     SlidingResult
+
+    Raises
+    ------
+    bem.errors.InputError
+        For an argument out of range, a string where a number is meant, or an unknown
+        keyword (named, with the closest valid one).
+
+    Examples
+    --------
+    A rigid sinusoid (amplitude 1 µm, wavelength 1 mm) pressed with 1 N on a 1 mm cell of
+    an elastic half-space:
+
+    >>> import bem
+    >>> s = bem.surfaces.sinusoid(64, 1e-3, amplitude=1e-6)
+    >>> r = bem.solve(s, bem.Material.elastic(1e7), speed=0.0, load=1.0)
+    >>> r.success, round(r.friction, 12)
+    (True, 0.0)
+    >>> bem.solve(s, bem.Material.elastic(1e7), speed=0.0, lod=1.0)
+    Traceback (most recent call last):
+    ...
+    bem.errors.InputError: solve() got unknown keyword argument 'lod' (did you mean 'load'?); valid: ...
     """
+    check_keywords("solve", adaptive_options, ADAPTIVE_OPTIONS + _SOLVE_KEYWORDS)
     surface, speed, load, approach, rtol = check_inputs(surface, material, speed, load, approach, rtol)
     if not isinstance(periodic, (bool, np.bool_)):
-        raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {periodic!r}")
+        raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {show(periodic)}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
     if method not in methods:
         raise InputError(f"method must be one of {', '.join(repr(m) for m in methods)} for "
-                         f"periodic={bool(periodic)}, got {method!r}")
+                         f"periodic={bool(periodic)}, got {show(method)}")
     if adaptive_options and method != "adaptive":
-        raise InputError(f"unexpected keyword(s) {sorted(adaptive_options)}: only method='adaptive' "
-                         f"takes extra options")
+        names = ", ".join(repr(k) for k in sorted(adaptive_options))
+        raise InputError(f"{names} {'is an option' if len(adaptive_options) == 1 else 'are options'} of "
+                         f"method='adaptive' (isolated contacts) only, got method={method!r}")
     if not periodic and method == "auto":
         method = _choose_isolated_method(surface, material, speed=speed, load=load, rtol=rtol)
     if method == "adaptive":
@@ -190,8 +217,8 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     if approach is not None and periodic:
         limit = float(surface.heights.max() - surface.heights.mean())
         if not approach < limit:
-            raise InputError(f"approach must be in (0, {limit!r}) m: at max(h) - mean(h) the cell is in full "
-                             f"contact and the load is unbounded (zero-mean displacement), got {approach!r}")
+            raise InputError(f"approach must be in (0, {show(limit)}) m: at max(h) - mean(h) the cell is in full "
+                             f"contact and the load is unbounded (zero-mean displacement), got {show(approach)}")
     t0 = time.perf_counter()
     op = operator_for(surface, material, speed, periodic)
     area = op.area
@@ -213,7 +240,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
         wall_time=time.perf_counter() - t0)
     log.info("speed %.3e m/s: %s", speed, sol.message)
     if not sol.success and raise_on_failure:
-        raise ConvergenceError(f"speed {speed!r} m/s: {sol.message}", result)
+        raise ConvergenceError(f"speed {show(speed)} m/s: {sol.message}", result)
     return result
 
 
@@ -255,6 +282,14 @@ class FrictionCurve:
     def all_converged(self):
         return bool(np.all(self.success))
 
+    def __repr__(self):
+        """One line: the speed range, how many points converged and the friction's range."""
+        ok = np.asarray(self.success, dtype=bool)
+        mu = np.asarray(self.friction, dtype=float)[ok]
+        span = f", friction {mu.min():.6g}..{mu.max():.6g}" if mu.size else ""
+        return (f"FrictionCurve({self.speeds.size} speeds {self.speeds.min():.6g}..{self.speeds.max():.6g} m/s, "
+                f"{int(ok.sum())} converged{span})")
+
 
 def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
                    progress=False, callback=None, periodic=True, method="auto"):
@@ -283,9 +318,9 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
     try:
         speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
     except (TypeError, ValueError):
-        raise InputError(f"speeds must be a list of numbers (m/s), got {speeds!r}") from None
+        raise InputError(f"speeds must be a list of numbers (m/s), got {show(speeds)}") from None
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {speeds!r}")
+        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {show(speeds)}")
     surface, _, load, _, rtol = check_inputs(surface, material, 0.0, load, None, rtol)
     from tqdm.auto import tqdm
 

@@ -19,7 +19,7 @@ from types import MappingProxyType
 import numpy as np
 
 from . import fft
-from .checks import check_array, check_int, check_positive, check_range
+from .checks import check_array, check_int, check_positive, check_range, show
 from .errors import InputError
 from .statistics import _moments, psd_target
 
@@ -82,7 +82,7 @@ class Surface:
 
     def __repr__(self):
         kind = "centered" if self.centered else "periodic"
-        return f"Surface(name={self.name!r}, shape={self.shape}, length={self.length!r}, {kind})"
+        return f"Surface(name={self.name!r}, shape={self.shape}, length={show(self.length)}, {kind})"
 
     @property
     def ndim(self):
@@ -212,12 +212,12 @@ def self_affine(n, length, *, hurst, scales=None, cutoff_wavevector=None, rollof
     dim = check_int("dim", dim, 1, 2)
     s = check_positive("anisotropy", anisotropy)
     if dim == 1 and s != 1.0:
-        raise InputError(f"anisotropy must be 1 for a 1-D profile (dim=1), got {anisotropy!r}")
+        raise InputError(f"anisotropy must be 1 for a 1-D profile (dim=1), got {show(anisotropy)}")
     stretch = max(s, 1.0 / s)
     q_l = 2.0 * np.pi / length
     if scales is not None and cutoff_wavevector is not None:
-        raise InputError(f"give scales or cutoff_wavevector, not both; got scales={scales!r}, "
-                         f"cutoff_wavevector={cutoff_wavevector!r}")
+        raise InputError(f"give scales or cutoff_wavevector, not both; got scales={show(scales)}, "
+                         f"cutoff_wavevector={show(cutoff_wavevector)}")
     if cutoff_wavevector is None:
         scales = check_int("scales", 64 if scales is None else scales, 1)
         if scales * stretch > n / 2:
@@ -229,8 +229,8 @@ def self_affine(n, length, *, hurst, scales=None, cutoff_wavevector=None, rollof
         q_1 = check_range("cutoff_wavevector", cutoff_wavevector, q_l, np.pi * n / length / stretch)
     rolloff = check_range("rolloff", rolloff, 1.0, q_1 / q_l)
     if (rms_height is None) == (rms_slope is None):
-        raise InputError(f"give exactly one of rms_height and rms_slope, got rms_height={rms_height!r}, "
-                         f"rms_slope={rms_slope!r}")
+        raise InputError(f"give exactly one of rms_height and rms_slope, got rms_height={show(rms_height)}, "
+                         f"rms_slope={show(rms_slope)}")
     target = check_positive("rms_height", rms_height) if rms_slope is None else None
     slope = check_positive("rms_slope", rms_slope) if rms_height is None else None
     rng, seed_value = _rng(seed)
@@ -266,7 +266,7 @@ def _directional_factor(q, spectrum):
     s2 = spectrum["anisotropy"] ** 2
     factor = (s2 * xx - xy) / (yy - s2 * xy)
     if not (np.isfinite(factor) and factor > 0):
-        raise InputError(f"anisotropy {spectrum['anisotropy']!r} cannot be realised exactly on this grid; "
+        raise InputError(f"anisotropy {show(spectrum['anisotropy'])} cannot be realised exactly on this grid; "
                          "use more scales or a value closer to 1")
     return float(factor)
 
@@ -312,13 +312,13 @@ def sinusoid(n, length, *, amplitude, wavelength=None, dim=1, direction="x", nam
     periods = round(length / wavelength)
     if periods < 1 or abs(length / wavelength - periods) > 1e-9 * length / wavelength:
         raise InputError(f"wavelength must be length / k for a whole number k >= 1 (periodic cell, "
-                         f"length = {length!r}), got {wavelength!r}")
+                         f"length = {show(length)}), got {show(wavelength)}")
     if 2 * periods >= n:
-        raise InputError(f"wavelength must be > 2 spacing = {2 * length / n!r} (resolved on n = {n}), "
-                         f"got {wavelength!r}")
+        raise InputError(f"wavelength must be > 2 spacing = {show(2 * length / n)} (resolved on n = {n}), "
+                         f"got {show(wavelength)}")
     valid = ("x",) if dim == 1 else ("x", "y", "xy")
     if direction not in valid:
-        raise InputError(f"direction must be one of {valid} for dim={dim}, got {direction!r}")
+        raise InputError(f"direction must be one of {valid} for dim={dim}, got {show(direction)}")
     wave = np.cos(2 * np.pi * periods * np.arange(n) / n)
     if dim == 1:
         heights = amplitude * wave
@@ -354,14 +354,14 @@ def load(path, length, *, unit="m", name=None):
     """
     length = check_positive("length", length)
     if unit not in _UNITS:
-        raise InputError(f"unit must be one of {sorted(_UNITS)}, got {unit!r}")
+        raise InputError(f"unit must be one of {sorted(_UNITS)}, got {show(unit)}")
     try:
         p = Path(path)
     except TypeError:
-        raise InputError(f"path must be a file path, got {path!r}") from None
+        raise InputError(f"path must be a file path, got {show(path)}") from None
     suffix = p.suffix.lower()
     if suffix not in (".npy", ".txt", ".csv"):
-        raise InputError(f"path must end in .npy, .txt or .csv, got {str(p)!r}")
+        raise InputError(f"path must end in .npy, .txt or .csv, got {show(str(p))}")
     try:
         if suffix == ".npy":
             data = np.load(p, allow_pickle=False)
@@ -376,11 +376,11 @@ def load(path, length, *, unit="m", name=None):
             raise ValueError("heights are complex")
         data = np.asarray(data, dtype=float)
     except (OSError, ValueError, TypeError) as err:
-        raise InputError(f"path {str(p)!r} could not be read as heights: {err}") from None
+        raise InputError(f"path {show(str(p))} could not be read as heights: {err}") from None
     if data.ndim not in (1, 2) or (data.ndim == 2 and data.shape[0] != data.shape[1]):
-        raise InputError(f"path {str(p)!r} must hold 1-D or square 2-D heights, got shape {data.shape}")
+        raise InputError(f"path {show(str(p))} must hold 1-D or square 2-D heights, got shape {data.shape}")
     if data.shape[0] < 2 or not np.all(np.isfinite(data)):
-        raise InputError(f"path {str(p)!r} must hold finite heights, at least 2 per side; "
+        raise InputError(f"path {show(str(p))} must hold finite heights, at least 2 per side; "
                          f"got shape {data.shape}, {np.count_nonzero(~np.isfinite(data))} non-finite")
     meta = {"kind": "file", "path": str(p), "unit": unit}
     return Surface(data * _UNITS[unit], length, name=p.stem if name is None else name, metadata=meta)
@@ -393,12 +393,12 @@ def _indenter(radius, n, length, exact, dim, kind):
     n = check_int("n", n, 2)
     length = check_positive("length", length)
     if not isinstance(exact, (bool, np.bool_)):
-        raise InputError(f"exact must be True or False, got {exact!r}")
+        raise InputError(f"exact must be True or False, got {show(exact)}")
     reach = np.sqrt(dim) * length / 2  # farthest domain point from the axis
     if exact and not reach < radius:
         limit = "2 radius" if dim == 1 else "sqrt(2) radius"
-        raise InputError(f"length must be < {limit} = {2 * radius / np.sqrt(dim)!r} m for the exact "
-                         f"{kind} (the domain must lie under the {kind}), got {length!r}")
+        raise InputError(f"length must be < {limit} = {show(2 * radius / np.sqrt(dim))} m for the exact "
+                         f"{kind} (the domain must lie under the {kind}), got {show(length)}")
     x = (np.arange(n) + 0.5) * (length / n) - length / 2
     r2 = x**2 if dim == 1 else x[:, None] ** 2 + x[None, :] ** 2
     heights = np.sqrt(radius**2 - r2) - radius if exact else -r2 / (2.0 * radius)

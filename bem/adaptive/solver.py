@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..checks import check_int, check_positive
+from ..checks import check_int, check_positive, show
 from ..contact import solve_contact
 from ..errors import ConvergenceError, InputError
 from ..material import Material
@@ -26,7 +26,7 @@ __all__ = ["AdaptiveResult", "solve_adaptive"]
 log = logging.getLogger(__name__)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class AdaptiveResult(SlidingResult):
     """:class:`~bem.result.SlidingResult` of :func:`solve_adaptive`, with the meshes it built.
 
@@ -78,7 +78,7 @@ def _check(surface, material, speed, load, rtol, levels, buffer, gradient, sampl
     load = check_positive("load", load)
     rtol = check_positive("rtol", rtol)
     if rtol >= 1:
-        raise InputError(f"rtol must be in (0, 1), got {rtol!r}")
+        raise InputError(f"rtol must be in (0, 1), got {show(rtol)}")
     levels = check_int("levels", levels, 0, 12)
     if surface.n % 2**levels:
         raise InputError(f"levels must leave whole coarse elements: surface.n = {surface.n} must be divisible "
@@ -86,7 +86,7 @@ def _check(surface, material, speed, load, rtol, levels, buffer, gradient, sampl
     buffer = check_positive("buffer", buffer, allow_zero=True)
     gradient = check_positive("gradient", gradient)
     if sampling not in ("centre", "mean"):
-        raise InputError(f"sampling must be 'centre' or 'mean', got {sampling!r}")
+        raise InputError(f"sampling must be 'centre' or 'mean', got {show(sampling)}")
     if height is not None and not callable(height):
         raise InputError(f"height must be a callable h(x[, y]) (m), got {type(height).__name__}")
     return speed, load, rtol, levels, buffer, gradient
@@ -197,5 +197,5 @@ def solve_adaptive(surface, material, *, speed, load, rtol=1e-8, levels=3, buffe
         success=sol.success, message=message, wall_time=time.perf_counter() - t0,
         meshes=tuple(meshes))
     if not sol.success and raise_on_failure:
-        raise ConvergenceError(f"speed {speed!r} m/s: {message}", result)
+        raise ConvergenceError(f"speed {show(speed)} m/s: {message}", result)
     return result
