@@ -9,8 +9,8 @@ from scipy import integrate
 
 from bem import Material, adaptive, surfaces
 from bem.adaptive import square, strip
-from bem.influence import love_corner
 from bem.errors import InputError
+from bem.influence import love_corner
 from validation._bruteforce_line import strip_kernel
 from validation.hertz import line_contact, point_contact
 from validation.hunter import rolling_cylinder
@@ -57,7 +57,7 @@ def test_creep_table_vs_quadrature(shift):
     for i, j in [(0, 0), (1, 0), (-1, 1), (3, 2), (-7, 0), (12, 12), (-12, 5)]:
         X, Y = i * h / 2, j * h / 2
         pts = [z for z in ((-h / 2 - X) / shift, (h / 2 - X) / shift) if z > 0]
-        ref = integrate.quad(lambda z: np.exp(-z) * square._cell_influence(X + shift * z, Y, h), 0, 60,
+        ref = integrate.quad(lambda z, X=X, Y=Y: np.exp(-z) * square._cell_influence(X + shift * z, Y, h), 0, 60,
                              points=pts or None, limit=800, epsabs=0, epsrel=1e-12)[0]
         assert table[i + 2 * n, j] == pytest.approx(ref, rel=1e-9)
 
@@ -311,8 +311,9 @@ def test_rubber_profile_many_terms():
     # 30-term Prony series, E_inf/E0 = 1e4 (tests/conftest.py), cylinder near the loss peak:
     # converges, dissipates, and matches the uniform DC-FFT solver on the same grid to 1e-3
     # (the adaptive mesh coarsens only far elements; both solve the same collocation)
-    import bem
     from conftest import make_prony30
+
+    import bem
 
     rubber = make_prony30()
     load = 1000.0

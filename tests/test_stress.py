@@ -25,10 +25,10 @@ import os
 import time
 from pathlib import Path
 
+import _reference as ref
 import numpy as np
 import pytest
 
-import _reference as ref
 import bem
 from bem.errors import ConvergenceError
 

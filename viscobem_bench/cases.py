@@ -17,8 +17,8 @@ entries, against Hunter's exact rolling cylinder, are written this way)::
             yield {"n": n}
 """
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 
@@ -84,7 +84,7 @@ def _westergaard_group(group, quick):
     tight = bem.solve(surface, m, speed=0.0, load=exact.mean_pressure * L**2, rtol=RTOL_REF).pressure
     points = []
     for rtol in RTOLS:
-        res, t = timed(lambda: bem.solve(surface, m, speed=0.0, load=exact.mean_pressure * L**2, rtol=rtol))
+        res, t = timed(lambda rtol=rtol: bem.solve(surface, m, speed=0.0, load=exact.mean_pressure * L**2, rtol=rtol))
         err = float(np.linalg.norm(res.pressure - p_exact) / np.linalg.norm(p_exact))
         points.append({"n": n, "rtol": rtol, "error": err, "time": t, "peak_rss": _measure.peak_rss(),
                        "iterations": res.iterations, "matvecs": res.matvecs,
@@ -143,7 +143,7 @@ def _rough_group(group, quick):
     bem.solve(surface, m, speed=speed, load=rough_load(m), rtol=1e-4)  # warm-up (FFT plans), untimed
     points = []
     for rtol in group["rtols"]:
-        res, t = timed(lambda: bem.solve(surface, m, speed=speed, load=rough_load(m), rtol=rtol))
+        res, t = timed(lambda rtol=rtol: bem.solve(surface, m, speed=speed, load=rough_load(m), rtol=rtol))
         points.append({"n": group["n"], "rtol": rtol, "friction": res.friction, "time": t,
                        "peak_rss": _measure.peak_rss(), "iterations": res.iterations, "matvecs": res.matvecs,
                        "contact_fraction": res.contact_fraction, "pressure": res.pressure})
@@ -201,8 +201,8 @@ def _fem(quick):
 # ---------------------------------------------------------------- isolated BEM (uniform, adaptive), Hunter
 def _hunter_reference(factor):
     """Hunter's exact friction and peak pressure for viscobem_bench.isolated's cylinder problem."""
-    from viscobem_bench.isolated import LOADS, RADIUS, _a0, _material
     from validation.hunter import rolling_cylinder
+    from viscobem_bench.isolated import LOADS, RADIUS, _a0, _material
 
     m = _material()
     exact = rolling_cylinder(m, radius=RADIUS, load=LOADS["cylinder"], speed=factor * _a0("cylinder", m) / m.creep_times[0])

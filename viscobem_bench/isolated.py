@@ -39,7 +39,13 @@ import time
 
 import numpy as np
 
-from viscobem_bench._measure import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
+from viscobem_bench._measure import (
+    load_average,
+    peak_rss,
+    run_in_fresh_process,
+    source_snapshot,
+    thread_environment,
+)
 
 RADIUS = 0.01
 LOADS = {"cylinder": 1000.0, "sphere": 1.0, "sphere-wide": 1.0, "sphere-xwide": 1.0}

@@ -8,7 +8,7 @@ def pareto_front(points):
     """Indices of the points not dominated in (time, error), sorted by time."""
     pts = sorted((p["time"], p["error"], i) for i, p in enumerate(points) if p.get("error") is not None)
     front, best = [], np.inf
-    for t, e, i in pts:
+    for _, e, i in pts:
         if e < best:
             front.append(i)
             best = e

@@ -22,8 +22,15 @@ import numpy as np
 
 import bem
 from bem.sliding import operator_for
-from viscobem_bench.periodic import (LENGTH, TARGET_CONTACT, _table, load_for_contact, materials, publish,
-                                 surface_heights)
+from viscobem_bench.periodic import (
+    LENGTH,
+    TARGET_CONTACT,
+    _table,
+    load_for_contact,
+    materials,
+    publish,
+    surface_heights,
+)
 
 XIS = (1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4)
 SIZES, QUICK_SIZES, QUICK_XIS = (256, 512), (64, 128), (1e-4, 1e-2, 1e4)

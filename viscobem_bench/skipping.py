@@ -35,10 +35,10 @@ def _skip_worker(spec):
     folded = rubber.folded(w_min, w_max)
     load = rough_load(rubber) * 3
     for name, m in (("full", rubber), ("folded", folded)):
-        build, _, _ = _measure.median_time(lambda: PeriodicHalfSpace(surface.shape, L, m, speed), min_repeats=3,
+        build, _, _ = _measure.median_time(lambda m=m: PeriodicHalfSpace(surface.shape, L, m, speed), min_repeats=3,
                                            max_repeats=10, budget=1.0)
         sliding.clear_operator_cache()
-        res, t = timed(lambda: bem.solve(surface, m, speed=speed, load=load))
+        res, t = timed(lambda m=m: bem.solve(surface, m, speed=speed, load=load))
         out[f"fold_{name}"] = {"terms": int(m.moduli.size), "operator_build_time": build, "solve_time": t,
                                "friction": res.friction, "matvecs": res.matvecs}
     out["fold_friction_change"] = abs(out["fold_folded"]["friction"] / out["fold_full"]["friction"] - 1)
@@ -58,7 +58,7 @@ def _skip_worker(spec):
     times = {True: [], False: []}
     for _ in range(2):  # interleaved repeats: the machine's load drifts
         for cached in (False, True):
-            times[cached].append(timed(lambda: load_sweep(cached))[1])
+            times[cached].append(timed(lambda cached=cached: load_sweep(cached))[1])
     build, _, _ = _measure.median_time(lambda: PeriodicHalfSpace(surface.shape, L, rubber, speed), min_repeats=3,
                                        max_repeats=10, budget=0.5)
     out["reuse_operator"] = {"solves": len(loads), "time_cached": min(times[True]),

@@ -44,8 +44,9 @@ def run(quick=False, out_dir="bench-out", *, solvers=None, scaling=True, skip=Tr
     with ``stages`` and ``files``), times the skipping of unrequested outputs of a command-line
     study; without it that part is left out (see :mod:`viscobem_bench.skipping`).
     """
-    import bem
     import scipy
+
+    import bem
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
