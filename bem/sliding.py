@@ -33,7 +33,7 @@ from .isolated import IsolatedHalfSpace
 from .material import Material
 from .periodic import PeriodicHalfSpace
 from .result import SlidingResult
-from .surfaces import Surface
+from .surface import Surface
 
 __all__ = ["SlidingResult", "FrictionCurve", "solve", "friction_curve"]
 

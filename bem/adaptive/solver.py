@@ -17,7 +17,7 @@ from ..contact import solve_contact
 from ..errors import ConvergenceError, InputError
 from ..material import Material
 from ..result import SlidingResult
-from ..surfaces import Surface
+from ..surface import Surface
 from .assembly import ForceOperator, influence_matrix, phase_symbol
 from .mesh import element_values, marked_elements, owner, refine, uniform_mesh
 
