@@ -75,7 +75,7 @@ def test_symmetric_warm_start_stops_cycling(monkeypatch):
     contact, without the coarse-grid start: the symmetric-part warm start cycles between two
     sets; stopping it once the number of changes stalls took the solve from 4587 to 2883
     operator products (1837 with inner tolerances that tighten only near the solution)."""
-    from viscobem_bench.periodic import LENGTH, materials, surface_heights
+    from viscobem_bench.periodic_problem import LENGTH, materials, surface_heights
 
     monkeypatch.setattr(contact, "COARSEN", False)
     s = bem.surfaces.from_heights(surface_heights(512), LENGTH)

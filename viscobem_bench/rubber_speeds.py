@@ -22,15 +22,14 @@ import numpy as np
 
 import bem
 from bem.sliding import operator_for
-from viscobem_bench.periodic import (
+from viscobem_bench.periodic_problem import (
     LENGTH,
     TARGET_CONTACT,
-    _table,
     load_for_contact,
     materials,
-    publish,
     surface_heights,
 )
+from viscobem_bench.periodic_report import publish, table
 
 XIS = (1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4)
 SIZES, QUICK_SIZES, QUICK_XIS = (256, 512), (64, 128), (1e-4, 1e-2, 1e4)
@@ -117,7 +116,7 @@ def _report(result, markdown=False):
     return "\n\n".join([("# " if markdown else "") + title,
                         f"rtol {result['rtol']:g}; each load gives about {result['target_contact_fraction']:.0%} "
                         f"contact on {sizes[0]}²; xi = v tau / L, tau = {result['longest_creep_time_s']:.4g} s",
-                        _table(headers, rows, markdown), f"total time {result['total_time']:.0f} s"])
+                        table(headers, rows, markdown), f"total time {result['total_time']:.0f} s"])
 
 
 def main(argv=None):

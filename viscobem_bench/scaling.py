@@ -41,7 +41,7 @@ def _fit_exponent(n, t):
 
 
 def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
-    from viscobem_bench.periodic import _tamaas_worker
+    from viscobem_bench.periodic_workers import tamaas_worker
 
     try:
         import tamaas
@@ -65,7 +65,7 @@ def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
         if tamaas_version:
             spec = {"heights": hpath, "load": rough_load(elastic()), "tol": 1e-9, "reference": rpath}
             try:
-                tam = _measure.run_in_fresh_process(_tamaas_worker, spec, timeout=max_seconds,
+                tam = _measure.run_in_fresh_process(tamaas_worker, spec, timeout=max_seconds,
                                                     env=_measure.thread_environment(1, omp_threads=cores))
                 row.update(tamaas_time=tam["wall_time"], tamaas_ratio=tam["wall_time"] / row["time"],
                            tamaas_pressure_difference=tam["pressure_error_l2"],
