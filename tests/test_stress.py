@@ -2,7 +2,7 @@
 
 Run it separately: ``pytest -m stress`` (excluded from the default run; about 10 min on
 2 cores). Every case either converges to the stated residual with a physically sane answer,
-checked against an *independent* operator (:mod:`_reference`: numpy FFTs and the relaxation
+checked against an *independent* operator (:mod:`validation.periodic_exact`: numpy FFTs and the relaxation
 series), or raises :class:`bem.errors.ConvergenceError` with ``success=False`` — never a
 silent wrong answer. The ranges, each swept on its own around a middle case:
 
@@ -36,12 +36,12 @@ import os
 import time
 from pathlib import Path
 
-import _reference as ref
 import numpy as np
 import pytest
 
 import bem
 from bem.errors import ConvergenceError
+from validation import periodic_exact as ref
 
 pytestmark = pytest.mark.stress
 
