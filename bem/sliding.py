@@ -27,7 +27,7 @@ import numpy as np
 
 from . import fft
 from .checks import check_array, check_int, check_keywords, check_positive, show
-from .contact import solve_contact
+from .contact import ContactOptions, solve_contact
 from .errors import ConvergenceError, InputError
 from .isolated import IsolatedHalfSpace
 from .material import Material
@@ -101,7 +101,7 @@ _ISOLATED_METHODS = ("auto", "uniform", "adaptive")
 # keywords of bem.adaptive.solve_adaptive that solve() passes on with method="adaptive"
 ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling", "height", "max_elements")
 _SOLVE_KEYWORDS = ("speed", "load", "approach", "periodic", "method", "rtol", "maxiter", "initial",
-                   "raise_on_failure")
+                   "raise_on_failure", "contact_options")
 _PERIODIC_METHODS = ("auto", "active-set")
 
 
@@ -128,7 +128,8 @@ def _choose_isolated_method(surface, material, *, speed, load, rtol):
 
 
 def solve(surface, material, *, speed, load=None, approach=None, periodic=True, method="auto",
-          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, **adaptive_options):
+          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, contact_options=None,
+          **adaptive_options):
     """Steady sliding of a rigid surface over a viscoelastic half-space.
 
     Parameters
@@ -161,6 +162,8 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     raise_on_failure : bool
         Raise :class:`bem.errors.ConvergenceError` when the tolerance is not reached
         (default). With ``False`` the result comes back with ``success=False``.
+    contact_options : bem.contact.ContactOptions, optional
+        Tunables of the contact solver (uniform grids); default ``ContactOptions()``.
 
     Returns
     -------
@@ -224,7 +227,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     area = op.area
     sol = solve_contact(op, surface.heights, mean_pressure=None if load is None else load / area,
                         approach=approach, rtol=rtol, maxiter=maxiter, initial=initial,
-                        raise_on_failure=False)
+                        raise_on_failure=False, options=contact_options or ContactOptions())
     p = sol.pressure
     total = float(p.mean() * area)
     if total > 0:
