@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-import bem
+import bem.sliding
 from bem.errors import InputError
 from viscobem_cli import scene as scenes
 from viscobem_cli.study import fold_material, run_scene
@@ -64,7 +64,7 @@ def test_ensemble_reports_mean_and_standard_error(reference):
 
 
 def test_interrupted_sweep_resumes_where_it_stopped(tmp_path, monkeypatch, reference):
-    real_solve, calls = bem.solve, []
+    real_solve, calls = bem.sliding.solve, []  # the solve that bem.sweep calls
 
     def interrupted(*args, **kw):
         if len(calls) == 5:
@@ -72,14 +72,14 @@ def test_interrupted_sweep_resumes_where_it_stopped(tmp_path, monkeypatch, refer
         calls.append(kw["speed"])
         return real_solve(*args, **kw)
 
-    monkeypatch.setattr(bem, "solve", interrupted)
+    monkeypatch.setattr(bem.sliding, "solve", interrupted)
     with pytest.raises(KeyboardInterrupt):
         run_scene(_scene(), tmp_path, progress=False)
     partial = json.loads((tmp_path / "results.json").read_text())
     assert not partial["complete"] and len(partial["points"]) == 5  # every finished point is on disk
     assert len(list((tmp_path / "points").glob("*.json"))) == 5
     calls.clear()
-    monkeypatch.setattr(bem, "solve", lambda *a, **kw: (calls.append(kw["speed"]), real_solve(*a, **kw))[1])
+    monkeypatch.setattr(bem.sliding, "solve", lambda *a, **kw: (calls.append(kw["speed"]), real_solve(*a, **kw))[1])
     rec = run_scene(_scene(), tmp_path, progress=False)
     assert rec["resumed_points"] == 5 and len(calls) == 3  # only the 3 missing points were solved
     assert rec["complete"] and rec["all_converged"]
