@@ -3,7 +3,7 @@
 ``viscobem --help`` and ``viscobem run NAME`` read this module only, so they stay fast.
 """
 import difflib
-import importlib.util
+import importlib
 from pathlib import Path
 
 from bem.errors import InputError
@@ -59,5 +59,7 @@ def install_hint(module):
 
 def require(module):
     """Raise InputError with the install hint if the optional ``module`` cannot be imported."""
-    if importlib.util.find_spec(module) is None:
-        raise InputError(install_hint(module))
+    try:
+        importlib.import_module(module)
+    except ModuleNotFoundError as err:
+        raise InputError(install_hint(err.name) or str(err)) from None
