@@ -228,3 +228,74 @@ def test_command_line_workers_must_be_positive(tmp_path, capsys):
     path.write_text(BASE)
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--workers", "0"]) == 2
     assert "--workers" in capsys.readouterr().err
+
+
+# ----------------------------------------------------------------------------- one sweep
+def test_cli_points_are_the_friction_curve_of_the_api(tmp_path):
+    """The command line's chunks and bem.friction_curve run the same warm-started loop: the
+    same surface, material and speeds give the same numbers to round-off."""
+    s = _scene(**{"realisations = 2": "realisations = 1"})
+    rec = run_scene(s, tmp_path, progress=False)
+    curve = bem.friction_curve(s.surface, s.material, speeds=s.speeds, load=0.3, rtol=1e-9)
+    assert np.allclose(rec["friction_curve"]["friction"], curve.friction, rtol=1e-12, atol=0)
+    assert rec["friction_curve"]["iterations"] == curve.iterations.astype(int).tolist()
+
+
+def test_friction_curve_over_several_loads():
+    s = _scene(**{"realisations = 2": "realisations = 1"})
+    speeds = s.speeds[:3]
+    seen = []
+    curves = bem.friction_curve(s.surface, s.material, speeds=speeds, load=[0.2, 0.4], rtol=1e-9,
+                                callback=lambda k, v, res, msg: seen.append(k))
+    assert [c.load for c in curves] == [0.2, 0.4] and sorted(seen) == list(range(6))
+    for c, load in zip(curves, (0.2, 0.4)):
+        single = bem.friction_curve(s.surface, s.material, speeds=speeds, load=load, rtol=1e-9)
+        assert np.array_equal(c.friction, single.friction) and c.all_converged
+    assert np.all(curves[1].contact_fraction > curves[0].contact_fraction)
+    assert "FrictionCurve(load=0.2, 3 speeds" in repr(curves[0])
+    with pytest.raises(InputError, match="load"):
+        bem.friction_curve(s.surface, s.material, speeds=speeds, load=[0.2, -1.0])
+
+
+# ----------------------------------------------------------------------------- kill -9 and resume
+def test_killed_sweep_resumes_with_identical_results(tmp_path):
+    """``kill -9`` in the middle of ``viscobem run``: the folder keeps whole point files only,
+    and a rerun solves just the missing points, giving the uninterrupted run's numbers."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from viscobem_cli.main import main
+
+    text = BASE.replace("n = 32", "n = 64").replace("scales = 8", "scales = 16").replace(
+        "realisations = 2", "realisations = 1").replace("num = 4", "num = 12").replace(
+        "fields = false", "fields = true")
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    out = tmp_path / "killed"
+    proc = subprocess.Popen([sys.executable, "-m", "viscobem_cli.main", "run", str(path), "--out", str(out),
+                             "--no-progress"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while len(list((out / "points").glob("*.json"))) < 3 and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.02)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    done = len(list((out / "points").glob("*.json")))
+    assert 3 <= done < 12, f"{done} points written before the kill"
+    partial = json.loads((out / "results.json").read_text())  # written at the start: valid JSON
+    assert not partial["complete"]
+    assert main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    resumed = json.loads((out / "results.json").read_text())
+    assert resumed["complete"] and resumed["resumed_points"] >= done
+    assert not list(out.rglob(".*.tmp"))
+    assert main(["run", str(path), "--out", str(tmp_path / "whole"), "--no-progress"]) == 0
+    whole = json.loads((tmp_path / "whole" / "results.json").read_text())
+    for a, b in zip(resumed["points"], whole["points"]):
+        # a resumed point may start cold instead of warm: equal to the solver tolerance
+        assert a["friction"] == pytest.approx(b["friction"], rel=1e-6)
+        assert a["contact_fraction"] == pytest.approx(b["contact_fraction"], abs=1e-12)
+    with np.load(out / "fields.npz") as f, np.load(tmp_path / "whole" / "fields.npz") as g:
+        assert f["pressure"].shape == g["pressure"].shape == (12, 64, 64)
+        assert np.allclose(f["pressure"], g["pressure"], rtol=0, atol=1e-5 * g["pressure"].max())
