@@ -162,11 +162,11 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
 
     curves = []
     with tqdm(total=speeds.size * len(loads), disable=not progress, desc="friction curve", unit="speed") as bar:
-        for l, (_, _, f_n, _, _) in enumerate(checked):
-            def on_point(i, r, res, message, l=l):
+        for j, (_, _, f_n, _, _) in enumerate(checked):
+            def on_point(i, r, res, message, j=j):
                 bar.update(1)
                 if callback is not None:
-                    callback(l * speeds.size + i if several else i, float(speeds[i]), res, message)
+                    callback(j * speeds.size + i if several else i, float(speeds[i]), res, message)
 
             results, messages = sweep([surface], material, speeds=speeds, load=f_n, rtol=rtol, maxiter=maxiter,
                                       warm_start=warm_start, periodic=periodic, method=method,

@@ -60,7 +60,8 @@ def resolution_warnings(raw_surface, n, minimum):
             f"or lower [surface] scales."]
 
 
-def friction_form_warnings(curves, tolerance=FORM_TOLERANCE):
+def friction_form_warnings(curves, tolerance=FORM_TOLERANCE, advice="Raise [surface] n (or lower [surface] "
+                           "scales) until they agree."):
     """A warning per load whose two friction forms differ by more than ``tolerance`` (relative)."""
     out = []
     for curve in curves:
@@ -77,6 +78,5 @@ def friction_form_warnings(curves, tolerance=FORM_TOLERANCE):
         worst = int(bad[np.argmax(rel[bad])])
         out.append(f"at load {curve['load']:g}, the two friction forms (dissipation and eq. 6) differ by more "
                    f"than {100 * tolerance:g} % at {bad.size} of {mu.size} speeds (worst {100 * rel[worst]:.3g} % "
-                   f"at xi = {curve['xi'][worst]:.3g}): the grid does not resolve the contact. Raise [surface] n "
-                   f"(or lower [surface] scales) until they agree.")
+                   f"at xi = {curve['xi'][worst]:.3g}): the grid does not resolve the contact. {advice}")
     return out

@@ -48,23 +48,29 @@ def _cmd_run(args):
                        workers=args.workers)
     if record["resumed_points"]:
         print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
-    _print_curve(record["friction_curve"])
+    _print_curve(record["friction_curve"], record["surface"].get("hertz_radius_relaxed", [None])[0])
     for text in record["warnings"][len(scene.warnings):]:
         print(f"  WARNING: {text}")
     print(f"  total {record['stages']['total']:.1f} s; files: {', '.join(record['files'])}")
     return 0 if record["all_converged"] else 1
 
 
-def _print_curve(curve):
-    print(f"  {'xi':>10} {'speed (m/s)':>12} {'friction':>10} {'s.e.':>9} {'contact':>9} {'iters':>6}")
+def _print_curve(curve, a0=None):
+    """The friction curve as a table; indenters show the contact radius and a / a0."""
+    area = "a (mm)  a/a0" if a0 else "contact %"
+    print(f"  {'xi':>10} {'speed (m/s)':>12} {'friction':>10} {'s.e.':>9} {area:>13} {'iters':>6}")
     for i, xi in enumerate(curve["xi"]):
-        if curve["success"][i]:
-            se = curve["friction_se"][i]
-            print(f"  {xi:10.3e} {curve['speed'][i]:12.4e} {curve['friction'][i]:10.5f} "
-                  f"{'' if se is None else f'{se:9.5f}':>9} {curve['contact_fraction'][i]:9.4f} "
-                  f"{curve['iterations'][i]:6d}")
-        else:
+        if not curve["success"][i]:
             print(f"  {xi:10.3e} {curve['speed'][i]:12.4e}  FAILED: {curve['message'][i]}")
+            continue
+        se = curve["friction_se"][i]
+        if a0:
+            a = curve["contact_radius"][i]
+            contact = f"{a * 1e3:7.4f} {a / a0:5.3f}"
+        else:
+            contact = f"{100 * curve['contact_fraction'][i]:9.3f}"
+        print(f"  {xi:10.3e} {curve['speed'][i]:12.4e} {curve['friction'][i]:10.5f} "
+              f"{'' if se is None else f'{se:9.5f}':>9} {contact:>13} {curve['iterations'][i]:6d}")
 
 
 def _cmd_scene(args):

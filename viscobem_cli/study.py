@@ -246,7 +246,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
             stages["point_" + name] = float(sum(spent))
     extras = _analyses(scene, record, recs, points_dir, stages)
     _write_record(out, scene, record, recs)  # the curves, for the plots
-    record["warnings"] += guidance.friction_form_warnings(record["curves"])
+    advice = "Raise [surface] n until they agree." if scene.kind in ("sphere", "cylinder") else None
+    record["warnings"] += guidance.friction_form_warnings(record["curves"], **({"advice": advice} if advice else {}))
     record["files"] = _outputs(scene, record, recs, points_dir, out, extras, stages)
     expected = len(scene.realisations) * len(scene.loads) * scene.speeds.size
     record["all_converged"] = bool(all(p["success"] for p in recs.values()) and len(recs) == expected)

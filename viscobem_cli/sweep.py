@@ -186,20 +186,27 @@ def load_point(folder, r, l, i, key):
 STUDY_FIELDS = "fields.npz"  # in the folder above points/: fields of realisation 0 at load 0
 
 
+_study_cache = {}  # fields.npz path -> (modification time, arrays), read once per run
+
+
 def _study_fields(folder, key):
     """The arrays of the point ``key`` from the study's fields.npz (its point files are removed
     once it is written), or None."""
     path = Path(folder).parent / STUDY_FIELDS
     try:
-        with np.load(path) as z:
-            keys = [str(k) for k in z["point_keys"]] if "point_keys" in z.files else []
-            if key not in keys:
-                return None
-            j = keys.index(key)
-            return {"pressure": z["pressure"][j], "displacement": z["displacement"][j],
-                    "approach": z["approach"][j]}
+        stamp = path.stat().st_mtime_ns
+        if _study_cache.get(path, (None,))[0] != stamp:
+            with np.load(path) as z:
+                _study_cache.clear()
+                _study_cache[path] = (stamp, {k: z[k] for k in ("point_keys", "pressure", "displacement", "approach")})
+        data = _study_cache[path][1]
     except (OSError, ValueError, KeyError):
         return None
+    keys = [str(k) for k in data["point_keys"]]
+    if key not in keys:
+        return None
+    j = keys.index(key)
+    return {"pressure": data["pressure"][j], "displacement": data["displacement"][j], "approach": data["approach"][j]}
 
 
 def load_fields(folder, rec, surface):
