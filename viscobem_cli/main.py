@@ -15,7 +15,6 @@ to install). A sweep with points that did not converge exits with 1, and so does
 validation run in which any case misses a tolerance or a baseline.
 """
 import argparse
-import logging
 import sys
 from pathlib import Path
 
@@ -159,11 +158,22 @@ def _version():
         return "unknown (not installed)"
 
 
+class _Version(argparse.Action):
+    """``--version``, reading the installed metadata only when asked (it is slow to import)."""
+
+    def __init__(self, option_strings, dest, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"viscobem {_version()}")
+        parser.exit()
+
+
 def build_parser():
     names = ", ".join(builtin_scenes())
     parser = argparse.ArgumentParser(prog="viscobem", description=__doc__.split("\n\n")[0],
                                      epilog=f"built-in scenes: {names}. Start with: viscobem scene > my.toml")
-    parser.add_argument("--version", action="version", version=f"viscobem {_version()}")
+    parser.add_argument("--version", action=_Version, help="print the version and exit")
     parser.add_argument("-v", "--verbose", action="store_true", help="log solver progress")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help=f"run a scene (default: the seed paper's study; built-in: {names})",
@@ -210,6 +220,8 @@ def build_parser():
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
+    import logging
+
     logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
                         format="%(levelname)s %(name)s: %(message)s")
     try:
@@ -231,7 +243,8 @@ def main(argv=None):
         print(f"viscobem: did not converge: {err}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
-        print("viscobem: interrupted; finished points are in results.json", file=sys.stderr)
+        print("viscobem: interrupted; the finished points are kept: rerun the same command to resume",
+              file=sys.stderr)
         return 130
 
 
