@@ -3,6 +3,8 @@ import json
 import subprocess
 import sys
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -278,3 +280,22 @@ def test_import_benchmark_prints_its_ratio_to_numpy_and_scipy(tmp_path, capsys):
     assert rows["reference (numpy + scipy.fft + scipy.sparse.linalg)"]["ratio_to_reference"] == 1.0
     assert rows["import bem"]["statement"] == "import bem" and "import bem" in out
     assert sorted(p.name for p in tmp_path.iterdir()) == ["import_bench.json"]  # only under --out
+
+
+def test_scene_keys_table_documents_every_key():
+    """viscobem_cli.schema.KEYS is the table the scenes reference is generated from: every key
+    the parser accepts is in it, with a type, a valid range and a meaning."""
+    from viscobem_cli.schema import KEYS, SECTIONS, keys_of
+
+    for key in KEYS:
+        assert key.type and key.valid and key.help and key.section in ("",) + SECTIONS, key
+    names = {k.name for k in KEYS}
+    assert len({(k.section, k.name) for k in KEYS}) == len(KEYS)  # no row twice
+    # every key the parser reads from a table is a row of the table
+    import re
+
+    source = Path(scenes.__file__).read_text()
+    read = set(re.findall(r'\bt\.get\("(\w+)"', source)) | set(re.findall(r'\bt\["(\w+)"\]', source))
+    assert read and read <= names, read - names
+    for section in SECTIONS:
+        assert keys_of(section), section

@@ -1,6 +1,8 @@
 """Scenes: one study described in a TOML file, parsed into validated objects.
 
-Schema (SI units; unknown keys are an error that lists the valid ones)::
+Every key with its type, unit, default, valid range and meaning is in the table
+:data:`viscobem_cli.schema.KEYS` (the documentation's scenes reference is generated from it).
+In short (SI units; unknown keys are an error that lists the valid ones)::
 
     title = "..."                      # optional
     [material]   nu = 0.5 and one of:  E  |  E0, E_inf, creep_time | relaxation_time
