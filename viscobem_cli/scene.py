@@ -40,7 +40,6 @@ from bem.errors import InputError
 
 from . import guidance
 from .catalog import SCENE_DIR, builtin_scenes, scene_path
-from .schema import SECTIONS, names_of
 
 __all__ = ["Scene", "parse", "load", "describe_xi", "builtin_scenes", "SCENE_DIR", "DEFAULT_SCENE", "SCHEMA",
            "SURFACE_KINDS", "INDENTER_KINDS"]
@@ -50,8 +49,21 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-# valid key names per section ("" = top level), from the table of every key
-SCHEMA = {section: names_of(section) for section in ("",) + SECTIONS}
+# valid key names per section ("" = top level); each has a documented row in viscobem_cli.schema.KEYS
+SCHEMA = {
+    "": {"title", "material", "surface", "loading", "solver", "outputs", "analysis"},
+    "material": {"nu", "E", "E0", "E_inf", "creep_time", "relaxation_time", "moduli", "times",
+                 "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade"},
+    "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
+                "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
+                "realisations", "radius", "exact"},
+    "loading": {"load", "speeds", "xi", "xi_time"},
+    "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
+               "method"},
+    "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson",
+                "fields_precision"},
+    "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
+}
 SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder")
 INDENTER_KINDS = ("sphere", "cylinder")  # isolated indenters: periodic = false by default
 DEFAULT_SCENE = scene_path(None)

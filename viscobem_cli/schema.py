@@ -118,6 +118,33 @@ KEYS = [
     Key("analysis", "plot_xi", "number", "", "the friction peak", "> 0", "xi of the maps (nearest sweep point)."),
 ]
 
+# Keys parsed by viscobem_cli.temperatures (temperature and master curves), viscobem_cli.directions
+# (sliding direction) and viscobem_cli.measured_scene (measured topographies).
+KEYS += [
+    Key("material", "dma_modulus_unit", "string", "", "Pa", "Pa | kPa | MPa | GPa", "Unit of the DMA moduli."),
+    Key("material", "dma_temperature_unit", "string", "", "K", "K | C",
+        "Unit of the DMA table's temperature column (4-column tables)."),
+    Key("material", "shift", "table", "", None,
+        "{law = \"wlf\", C1, C2, reference_temperature} | {law = \"arrhenius\", activation_energy, "
+        "reference_temperature}",
+        "Time-temperature shift law (K, J/mol); with a 4-column DMA table its parameters are fitted."),
+    Key("loading", "temperatures", "list", "K", None, "numbers > 0; needs [material] shift",
+        "One speed sweep per temperature."),
+    Key("loading", "direction_deg", "number or list", "degree", 0.0,
+        "finite; 1-D profiles 0 or 180; a list sweeps directions",
+        "Sliding direction from +x toward +y."),
+    Key("surface", "detrend", "string", "", "plane", "none | mean | plane | curvature",
+        "measured: detrending of the topography."),
+    Key("surface", "boundary", "string", "", "isolated", "isolated | periodic",
+        "measured: the measured patch as an isolated contact or a periodic cell."),
+    Key("surface", "window", "string", "", "tukey", "tukey | hann | mirror | none",
+        "measured, periodic: window that makes the patch periodic."),
+    Key("surface", "alpha", "number", "", 0.25, "[0, 1]", "measured, tukey window: tapered fraction of each side."),
+    Key("surface", "scan_size", "list", "unit", None, "sizes > 0 per axis",
+        "measured: extent along x, y, only if the file has no size."),
+    Key("surface", "channel", "integer", "", 0, ">= 0", "measured: height channel of a multi-channel file."),
+]
+
 
 def keys_of(section):
     """The :class:`Key` rows of ``section`` ("" for top-level keys), in table order."""
