@@ -5,11 +5,12 @@ package. Units are SI throughout; heights are positive toward the half-space and
 indenter slides in ``+x`` (see :mod:`bem.periodic` for the operator's conventions).
 
 The package loads lazily: ``import bem`` is cheap, and each public name below imports
-its module on first use (PEP 562 module ``__getattr__``), so a script that needs only the
-periodic solver never pays for the isolated kernels, Persson's theory or the anisotropy
-tools.
+its module on first use (PEP 562 module ``__getattr__``), as does every submodule
+(``bem.periodic``), so a script that needs only the periodic solver never pays for
+Persson's theory or the anisotropy tools.
 """
 import importlib
+import importlib.util
 
 # public name -> (module, attribute); attribute None: the name is the module itself
 _LAZY = {
@@ -30,10 +31,12 @@ __all__ = list(_LAZY)
 
 
 def __getattr__(name):
-    try:
+    if name in _LAZY:
         module, attribute = _LAZY[name]
-    except KeyError:
-        raise AttributeError(f"module 'bem' has no attribute {name!r}") from None
+    elif not name.startswith("_") and importlib.util.find_spec(f"bem.{name}") is not None:
+        module, attribute = f"bem.{name}", None  # any submodule, e.g. bem.periodic
+    else:
+        raise AttributeError(f"module 'bem' has no attribute {name!r}")
     value = importlib.import_module(module)
     if attribute is not None:
         value = getattr(value, attribute)
