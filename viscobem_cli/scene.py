@@ -39,6 +39,7 @@ from bem.checks import check_positive
 from bem.errors import InputError
 
 from . import guidance
+from . import scene_values
 from .catalog import SCENE_DIR, builtin_scenes, scene_path
 
 __all__ = ["Scene", "parse", "load", "describe_xi", "builtin_scenes", "SCENE_DIR", "DEFAULT_SCENE", "SCHEMA",
@@ -202,13 +203,6 @@ def _surface(t, base):
     return (surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m")),)
 
 
-def _number(section, key, value):
-    """``float(value)`` for a TOML number (not a bool or string), else InputError naming it."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise InputError(f"[{section}] {key} must be a number, got {value!r}")
-    return float(value)
-
-
 def _xi_time(t, material):
     """tau of xi = v tau / l (s) and where it comes from."""
     if "xi_time" in t:
@@ -219,7 +213,7 @@ def _xi_time(t, material):
     else:
         tau = material.creep_times.max()
         source = "the material's longest creep time; set [loading] xi_time to change it"
-    return check_positive("[loading] xi_time (s)", _number("loading", "xi_time", tau)), source
+    return check_positive("[loading] xi_time (s)", scene_values.number("loading", "xi_time", tau)), source
 
 
 def _speeds(t, tau, length):
@@ -228,7 +222,7 @@ def _speeds(t, tau, length):
         raise InputError("[loading] give exactly one of speeds = [...] (m/s) or xi = {start, stop, num}")
     if "speeds" in t:
         values = t["speeds"] if isinstance(t["speeds"], list) else [t["speeds"]]
-        speeds = np.array([_number("loading", "speeds", v) for v in values], dtype=float)
+        speeds = np.array([scene_values.number("loading", "speeds", v) for v in values], dtype=float)
         if speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
             raise InputError(f"[loading] speeds must be a non-empty list of finite speeds >= 0 m/s, "
                              f"got {t['speeds']!r}")
@@ -241,7 +235,7 @@ def _speeds(t, tau, length):
         return values * length / tau, values
     if not isinstance(xi, dict) or set(xi) != {"start", "stop", "num"}:
         raise InputError("[loading] xi must be a table {start, stop, num} (log-spaced) or a list of values")
-    start, stop = (_number("loading", f"xi.{k}", xi[k]) for k in ("start", "stop"))
+    start, stop = (scene_values.number("loading", f"xi.{k}", xi[k]) for k in ("start", "stop"))
     num = xi["num"]
     if isinstance(num, bool) or not isinstance(num, int) or num < 1:
         raise InputError(f"[loading] xi.num must be an integer >= 1, got {num!r}")
@@ -263,7 +257,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     except tomllib.TOMLDecodeError as err:
         raise InputError(f"scene {source}: not valid TOML: {err}") from None
     for item in overrides:
-        _override(raw, item)
+        scene_values.override(raw, item)
     _check_keys(raw, "")
     for section in ("material", "surface", "loading"):
         if section not in raw:
@@ -274,7 +268,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     _check_keys(raw["loading"], "loading")
     if "load" not in raw["loading"]:
         raise InputError("[loading] load is required (N for 2-D surfaces, N/m for 1-D profiles)")
-    loads = _loads(raw["loading"]["load"])
+    loads = scene_values.loads(raw["loading"]["load"])
     tau, tau_source = _xi_time(raw["loading"], material)
     kind = raw["surface"]["kind"]
     xi_length = surface.length if kind not in INDENTER_KINDS else guidance.hertz_radius(
@@ -283,7 +277,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     warnings = guidance.resolution_warnings(raw["surface"], surface.n, MIN_POINTS_PER_WAVELENGTH)
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
-    run = _solver(solver)
+    run = scene_values.solver(solver)
     run["periodic"] = solver.get("periodic", raw["surface"].get("kind") not in INDENTER_KINDS)
     if not isinstance(run["periodic"], bool):
         raise InputError(f"[solver] periodic must be true or false, got {run['periodic']!r}")
@@ -294,7 +288,8 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
                          f"{str(run['periodic']).lower()}, got {run['method']!r}")
     analysis = raw.get("analysis", {})
     _check_keys(analysis, "analysis")
-    outputs, precision = _outputs(raw.get("outputs", {}), surface)
+    _check_keys(raw.get("outputs", {}), "outputs")
+    outputs, precision = scene_values.outputs(raw.get("outputs", {}), surface)
     level = analysis.get("contact_level", 0.476)
     if not (isinstance(level, (int, float)) and 0 < level < 1):
         raise InputError(f"[analysis] contact_level must be in (0, 1), got {level!r}")
@@ -310,75 +305,6 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
                  psd_smoothing=float(smoothing), plot_xi=None if plot_xi is None else float(plot_xi),
                  xi_length=float(xi_length), xi_time_source=tau_source, warnings=tuple(warnings),
                  fields_precision=precision, **run)
-
-
-def _outputs(t, surface):
-    """The [outputs] booleans with their defaults, and the fields' precision."""
-    outputs = {"friction_curve": True, "fields": True, "plots": True, "vtk": False,
-               "anisotropy": False, "contact_psd": False, "persson": False}
-    _check_keys(t, "outputs")
-    outputs.update(t)
-    precision = outputs.pop("fields_precision", "float32")
-    if precision not in ("float32", "float64"):
-        raise InputError(f"[outputs] fields_precision must be 'float32' or 'float64', got {precision!r}")
-    for key, value in outputs.items():
-        if not isinstance(value, bool):
-            raise InputError(f"[outputs] {key} must be true or false, got {value!r}")
-    for key in ("anisotropy", "contact_psd", "persson"):
-        if outputs[key] and surface.ndim != 2:
-            raise InputError(f"[outputs] {key} needs a 2-D surface (dim = 2), got a 1-D profile")
-    return outputs, precision
-
-
-def _loads(value):
-    values = value if isinstance(value, list) else [value]
-    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf
-                             for v in values):
-        raise InputError(f"[loading] load must be a finite number > 0 or a non-empty list of them "
-                         f"(N; N/m for 1-D profiles), got {value!r}")
-    return tuple(float(v) for v in values)
-
-
-def _solver(t):
-    def integer(key, default, low):
-        v = t.get(key, default)
-        if isinstance(v, bool) or not isinstance(v, int) or v < low:
-            raise InputError(f"[solver] {key} must be an integer >= {low}, got {v!r}")
-        return v
-
-    rtol = _number("solver", "rtol", t.get("rtol", 1e-8))
-    if not 0 < rtol < 1:
-        raise InputError(f"[solver] rtol must be in (0, 1), got {rtol!r}")
-    warm = t.get("warm_start", True)
-    if not isinstance(warm, bool):
-        raise InputError(f"[solver] warm_start must be true or false, got {warm!r}")
-    fold = t.get("fold_tol", 1e-6)
-    if not (isinstance(fold, (int, float)) and 0 <= fold < 1):
-        raise InputError(f"[solver] fold_tol must be in [0, 1) (0: no folding), got {fold!r}")
-    scheduler = t.get("scheduler")
-    if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
-        raise InputError(f"[solver] scheduler must be an address such as 'tcp://host:8786', got {scheduler!r}")
-    return {"rtol": float(rtol), "maxiter": integer("maxiter", 400, 1),
-            "warm_start": warm, "workers": integer("workers", 1, 1),
-            "chunk": integer("chunk", 0, 0), "scheduler": scheduler, "fold_tol": float(fold)}
-
-
-def _override(raw, item):
-    """Apply one ``section.key=value`` override (TOML value; a bare word is a string) to ``raw``."""
-    path, sep, value = str(item).partition("=")
-    keys = [k.strip() for k in path.split(".")]
-    if not sep or not all(keys):
-        raise InputError(f"--set needs section.key=value (e.g. surface.n=64), got {item!r}")
-    try:
-        parsed = tomllib.loads(f"v = {value.strip()}")["v"]
-    except tomllib.TOMLDecodeError:
-        parsed = value.strip()
-    table = raw
-    for key in keys[:-1]:
-        table = table.setdefault(key, {})
-        if not isinstance(table, dict):
-            raise InputError(f"--set {item!r}: {key!r} is not a table")
-    table[keys[-1]] = parsed
 
 
 def load(path=None, *, overrides=()):
