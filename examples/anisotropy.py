@@ -5,9 +5,9 @@ slow and a fast speed, each whitened by the same realisation at rest, so that on
 speed-induced part remains.
 """
 import numpy as np
+from _common import figure
 
 import bem
-from _common import figure
 
 material = bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)
 L, tau = 0.01, 0.01

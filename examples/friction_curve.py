@@ -5,9 +5,9 @@ paper's material. Friction is small at both ends, where the solid answers elasti
 with E0 (slow) or E_inf (fast), and peaks in between: the bell-shaped curve.
 """
 import numpy as np
+from _common import figure
 
 import bem
-from _common import figure
 
 material = bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)
 L = 0.01  # m, cell side

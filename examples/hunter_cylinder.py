@@ -4,9 +4,9 @@ The 1-D isolated BEM (plane strain, DC-FFT) is compared with Hunter's (1961) clo
 three speeds: the pressure peak moves to the leading edge (+x) as the speed rises.
 """
 import numpy as np
+from _common import figure
 
 import bem
-from _common import figure
 from validation.hunter import rolling_cylinder
 
 material = bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)

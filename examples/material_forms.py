@@ -4,9 +4,9 @@ A three-term Prony series is converted to its retardation (creep) form; the prod
 E(w) J(w) is 1 to round-off over twelve decades of frequency.
 """
 import numpy as np
+from _common import figure
 
 import bem
-from _common import figure
 
 material = bem.Material.from_prony(E0=1e6, moduli=[2e6, 1e7, 5e7], times=[1e-1, 1e-3, 1e-5])
 print("relaxation times (s):", material.relaxation_times)

@@ -3,9 +3,9 @@
 The periodic 1-D BEM against the exact pressure at half the full-contact load.
 """
 import numpy as np
+from _common import figure
 
 import bem
-from _common import figure
 from validation.westergaard import westergaard
 
 E, nu = 1e7, 0.5
