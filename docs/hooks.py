@@ -121,7 +121,12 @@ def _table(rows):
         for k, v in r.items():
             if k not in cols and not (isinstance(v, str) and (len(v) > 60 or v.startswith("/"))):
                 cols.append(k)
-    lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    common = {}
+    if len(rows) > 2:  # a column with one value throughout is stated once, above the table
+        common = {c: rows[0].get(c) for c in cols if all(r.get(c) == rows[0].get(c) for r in rows)}
+        cols = [c for c in cols if c not in common] or cols
+    lines = ["Same in every row: " + "; ".join(f"{c} = {_fmt(v)}" for c, v in common.items()) + "\n"] if common else []
+    lines += ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     lines += ["| " + " | ".join(_fmt(r.get(c)) for c in cols) + " |" for r in rows]
     return "\n".join(lines)
 
