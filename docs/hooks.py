@@ -12,15 +12,19 @@ A page holds a marker comment where a generated block goes:
   stored baselines (``validation/baselines/quick.json``).
 - ``<!-- generated:benchmarks -->``: a table per list of records in every benchmark JSON
   (``docs/benchmarks/*.json``, ``benchmarks/results/*.json``).
+- TeX between ``$...$`` or ``$$...$$`` becomes MathML at build time, so formulas need no
+  script and no network to display.
 - ``<!-- generated:gallery -->``: every ``examples/*.py``, run in a subprocess at build time,
   shown with its code, its printed output and its figure. Running them here keeps each
   figure true to the code beside it; a failing example fails the build.
 """
 from __future__ import annotations
 
+import html
 import json
 import logging
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -268,6 +272,21 @@ def _gallery_markdown():
 def on_files(files, config):
     _gallery_files(config, files)
     return files
+
+
+_MATH = re.compile(r'<(span|div) class="arithmatex">\\[(\[](.*?)\\[)\]]</\1>', re.DOTALL)
+
+
+def _mathml(match):
+    from latex2mathml.converter import convert
+
+    tag, tex = match.group(1), html.unescape(match.group(2)).strip()
+    return convert(tex, display="block" if tag == "div" else "inline")
+
+
+def on_page_content(content, page, config, files):
+    """TeX (from pymdownx.arithmatex) to MathML, which browsers render without scripts."""
+    return _MATH.sub(_mathml, content)
 
 
 def on_page_markdown(markdown, page, config, files):
