@@ -284,9 +284,13 @@ def _mathml(match):
     return convert(tex, display="block" if tag == "div" else "inline")
 
 
+_ROLE = re.compile(r":(?:mod|func|class|meth|attr|data|obj|exc):(?=<code>)")
+
+
 def on_page_content(content, page, config, files):
-    """TeX (from pymdownx.arithmatex) to MathML, which browsers render without scripts."""
-    return _MATH.sub(_mathml, content)
+    """TeX (from pymdownx.arithmatex) to MathML, which browsers render without scripts; the
+    Sphinx roles of numpydoc docstrings (``:func:`x` ``) shown as plain code."""
+    return _ROLE.sub("", _MATH.sub(_mathml, content))
 
 
 def on_page_markdown(markdown, page, config, files):
