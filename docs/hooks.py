@@ -11,13 +11,14 @@ A page holds a marker comment where a generated block goes:
   ``report.json`` rendered by ``validation.report``, else ``report.md``) and the quick set's
   stored baselines (``validation/baselines/quick.json``).
 - ``<!-- generated:benchmarks -->``: a table per list of records in every benchmark JSON
-  (``docs/benchmarks/*.json``, ``benchmarks/results/*.json``).
+  (``docs/benchmarks/*.json`` and the benchmark package's ``results/*.json``).
 - TeX between ``$...$`` or ``$$...$$`` becomes MathML at build time, so formulas need no
   script and no network to display.
 - ``<!-- generated:gallery -->``: every ``examples/*.py``, run in a subprocess at build time,
   shown with its code, its printed output and its figure. Running them here keeps each
   figure true to the code beside it; a failing example fails the build.
 """
+
 from __future__ import annotations
 
 import html
@@ -48,6 +49,7 @@ _gallery = {}  # example stem -> (stdout, figure site path or None)
 
 # --- scenes --------------------------------------------------------------------------------
 
+
 def _scene_keys():
     sys.path.insert(0, str(ROOT))
     from viscobem_cli import scene
@@ -67,10 +69,19 @@ def _scene_keys():
         for key in _ordered(keys, info):
             d = info.get(key)
             if d is None:
-                log.info("scene key [%s] %s has no description in docs/_data/scene_keys.toml", section, key)
+                log.info(
+                    "scene key [%s] %s has no description in docs/_data/scene_keys.toml",
+                    section,
+                    key,
+                )
                 d = {"doc": "(not described yet: see `viscobem scene`)"}
-            cells = [f"`{key}`", d.get("unit", ""), d.get("default", "") or "none",
-                     d.get("range", ""), d.get("doc", "")]
+            cells = [
+                f"`{key}`",
+                d.get("unit", ""),
+                d.get("default", "") or "none",
+                d.get("range", ""),
+                d.get("doc", ""),
+            ]
             out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
         out.append("")
     return "\n".join(out)
@@ -93,6 +104,7 @@ def _builtin_scenes():
 
 
 # --- JSON records ----------------------------------------------------------------------------
+
 
 def _fmt(v):
     if isinstance(v, bool):
@@ -129,7 +141,11 @@ def _table(rows):
     if len(rows) > 2:  # a column with one value throughout is stated once, above the table
         common = {c: rows[0].get(c) for c in cols if all(r.get(c) == rows[0].get(c) for r in rows)}
         cols = [c for c in cols if c not in common] or cols
-    lines = ["Same in every row: " + "; ".join(f"{c} = {_fmt(v)}" for c, v in common.items()) + "\n"] if common else []
+    lines = (
+        ["Same in every row: " + "; ".join(f"{c} = {_fmt(v)}" for c, v in common.items()) + "\n"]
+        if common
+        else []
+    )
     lines += ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     lines += ["| " + " | ".join(_fmt(r.get(c)) for c in cols) + " |" for r in rows]
     return "\n".join(lines)
@@ -152,8 +168,9 @@ def _record(path, title):
     out = [f"### {title}\n", f"From `{rel}`.\n"]
     if not isinstance(data, dict):
         data = {"records": data}
-    scalars = {k: v for k, v in data.items()
-               if k not in SKIPPED_KEYS and not isinstance(v, (dict, list))}
+    scalars = {
+        k: v for k, v in data.items() if k not in SKIPPED_KEYS and not isinstance(v, (dict, list))
+    }
     if scalars:
         out.append(", ".join(f"{k}: {_fmt(v)}" for k, v in scalars.items()) + "\n")
     for key, value in data.items():
@@ -173,13 +190,22 @@ def _record(path, title):
         elif isinstance(value, dict) and value:
             flat = _flatten(value)
             if flat and len(flat) <= 40:
-                out.append(f"**{key}**: " + "; ".join(f"{k} = {_fmt(v)}" for k, v in flat.items()
-                                                      if not (isinstance(v, str) and len(v) > 200)) + "\n")
+                out.append(
+                    f"**{key}**: "
+                    + "; ".join(
+                        f"{k} = {_fmt(v)}"
+                        for k, v in flat.items()
+                        if not (isinstance(v, str) and len(v) > 200)
+                    )
+                    + "\n"
+                )
     return "\n".join(out)
 
 
 def _benchmarks():
-    paths = sorted((DOCS / "benchmarks").glob("*.json")) + sorted((ROOT / "benchmarks" / "results").glob("*.json"))
+    paths = sorted((DOCS / "benchmarks").glob("*.json")) + sorted(
+        ROOT.glob("*bench*/results/*.json")
+    )
     if not paths:
         return "No benchmark records are present in this build.\n"
     return "\n".join(_record(p, p.stem.replace("_", " ")) for p in paths)
@@ -205,7 +231,9 @@ def _validation():
     if baselines.is_file():
         data = json.loads(baselines.read_text(encoding="utf-8"))
         out.append("## Stored baselines of the quick set\n")
-        out.append(f"From `validation/baselines/quick.json`. Comparison rule: {data.get('comparison', {}).get('rule', '')}\n")
+        out.append(
+            f"From `validation/baselines/quick.json`. Comparison rule: {data.get('comparison', {}).get('rule', '')}\n"
+        )
         prov = data.get("provenance", {})
         out.append("Made by `" + str(prov.get("command", "")) + f"` on {prov.get('date', '')}.\n")
         for case, values in sorted(data.get("values", {}).items()):
@@ -217,20 +245,36 @@ def _validation():
 
 def _demote(markdown):
     """Shift headings one level down, so a report's title nests under the page's."""
-    return "\n".join("#" + line if line.startswith("#") else line for line in markdown.splitlines()) + "\n"
+    return (
+        "\n".join("#" + line if line.startswith("#") else line for line in markdown.splitlines())
+        + "\n"
+    )
 
 
 # --- gallery ---------------------------------------------------------------------------------
+
 
 def _scripts():
     return sorted(p for p in EXAMPLES.glob("*.py") if not p.name.startswith("_"))
 
 
 def _run_example(script, out_dir):
-    env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=os.pathsep.join(
-        [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
-    run = subprocess.run([sys.executable, str(script), str(out_dir)], cwd=EXAMPLES, env=env,
-                         capture_output=True, text=True, timeout=300, check=False)
+    env = dict(
+        os.environ,
+        MPLBACKEND="Agg",
+        PYTHONPATH=os.pathsep.join(
+            [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
+        ),
+    )
+    run = subprocess.run(
+        [sys.executable, str(script), str(out_dir)],
+        cwd=EXAMPLES,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
     return script, run
 
 
@@ -269,6 +313,7 @@ def _gallery_markdown():
 
 # --- MkDocs events ---------------------------------------------------------------------------
 
+
 def on_files(files, config):
     _gallery_files(config, files)
     return files
@@ -295,12 +340,15 @@ def on_page_content(content, page, config, files):
 
 def on_page_markdown(markdown, page, config, files):
     blocks = {
-        "<!-- generated:scene-keys -->": lambda: _scene_keys() + "\n## Built-in scenes\n\n" + _builtin_scenes(),
+        "<!-- generated:scene-keys -->": lambda: (
+            _scene_keys() + "\n## Built-in scenes\n\n" + _builtin_scenes()
+        ),
         "<!-- generated:validation -->": _validation,
         "<!-- generated:benchmarks -->": _benchmarks,
         "<!-- generated:gallery -->": _gallery_markdown,
-        "<!-- generated:seed-figures -->": lambda: _record(DOCS / "figures" / "seed_figures_summary.json",
-                                                           "Numbers behind the figures"),
+        "<!-- generated:seed-figures -->": lambda: _record(
+            DOCS / "figures" / "seed_figures_summary.json", "Numbers behind the figures"
+        ),
     }
     for marker, render in blocks.items():
         if marker in markdown:

@@ -1,4 +1,5 @@
 """Shared by the examples: where to write figures (not an example itself)."""
+
 import os
 import sys
 from pathlib import Path

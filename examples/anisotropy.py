@@ -4,6 +4,7 @@ The second spectral moment m2(theta) of the deformed surface (the displacement f
 slow and a fast speed, each whitened by the same realisation at rest, so that only the
 speed-induced part remains.
 """
+
 import numpy as np
 from _common import figure
 
@@ -22,8 +23,10 @@ for xi in (1e-2, 1.0):
     result = bem.solve(surface, material, speed=xi * L / tau, load=0.3)
     moments = bem.anisotropy.spectral_moments(result.displacement, L)
     relative = bem.anisotropy.relative_moments(moments, reference)
-    print(f"xi = {xi:g}: gamma = {moments.gamma:.3f}, relative gamma = {relative.gamma:.3f}, "
-          f"Theta = {np.degrees(relative.theta_max):.0f} deg")
+    print(
+        f"xi = {xi:g}: gamma = {moments.gamma:.3f}, relative gamma = {relative.gamma:.3f}, "
+        f"Theta = {np.degrees(relative.theta_max):.0f} deg"
+    )
     m2 = relative.m2(theta)
     ax.plot(theta, m2 / m2.max(), label=rf"$\xi$ = {xi:g}")
 ax.set_title("relative m2(θ), normalised (sliding along θ = 0)", fontsize=9)

@@ -4,6 +4,7 @@ A self-affine surface (H = 0.8, 16 scales) on a 64² periodic cell slides over t
 paper's material. Friction is small at both ends, where the solid answers elastically
 with E0 (slow) or E_inf (fast), and peaks in between: the bell-shaped curve.
 """
+
 import numpy as np
 from _common import figure
 
@@ -19,8 +20,10 @@ assert curve.all_converged, curve.messages
 
 peak = np.argmax(curve.friction)
 print(f"friction peak {curve.friction[peak]:.4f} at xi = {xi[peak]:.3g}")
-print(f"contact area {100 * curve.contact_fraction[0]:.2f} % (slow) .. "
-      f"{100 * curve.contact_fraction[-1]:.2f} % (fast)")
+print(
+    f"contact area {100 * curve.contact_fraction[0]:.2f} % (slow) .. "
+    f"{100 * curve.contact_fraction[-1]:.2f} % (fast)"
+)
 
 plt, path = figure("friction_curve")
 fig, ax = plt.subplots(figsize=(5.5, 3.6))

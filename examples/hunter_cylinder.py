@@ -3,6 +3,7 @@
 The 1-D isolated BEM (plane strain, DC-FFT) is compared with Hunter's (1961) closed form at
 three speeds: the pressure peak moves to the leading edge (+x) as the speed rises.
 """
+
 import numpy as np
 from _common import figure
 
@@ -20,11 +21,19 @@ for speed, colour in [(0.02, "C0"), (0.2, "C1"), (2.0, "C2")]:
     result = bem.solve(profile, material, speed=speed, load=P, periodic=False)
     exact = rolling_cylinder(material, radius=R, load=P, speed=speed)
     error = abs(result.friction - exact.friction) / exact.friction
-    print(f"v = {speed:5.2f} m/s: friction {result.friction:.5f}, Hunter {exact.friction:.5f} "
-          f"(relative difference {error:.1e})")
+    print(
+        f"v = {speed:5.2f} m/s: friction {result.friction:.5f}, Hunter {exact.friction:.5f} "
+        f"(relative difference {error:.1e})"
+    )
     dense = np.linspace(exact.trailing_edge, exact.leading_edge, 400)
-    ax.plot(1e3 * dense, 1e-6 * exact.pressure(dense), "-", color=colour, lw=1,
-            label=f"Hunter, v = {speed} m/s")
+    ax.plot(
+        1e3 * dense,
+        1e-6 * exact.pressure(dense),
+        "-",
+        color=colour,
+        lw=1,
+        label=f"Hunter, v = {speed} m/s",
+    )
     ax.plot(1e3 * x[::8], 1e-6 * result.pressure[::8], "o", color=colour, ms=3)
 ax.set_xlim(-2.5, 2.5)
 ax.set_xlabel("x (mm), rolling toward +x")

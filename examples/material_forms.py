@@ -3,6 +3,7 @@
 A three-term Prony series is converted to its retardation (creep) form; the product
 E(w) J(w) is 1 to round-off over twelve decades of frequency.
 """
+
 import numpy as np
 from _common import figure
 

@@ -1,4 +1,5 @@
 """The README is a short front door whose commands and quick start work as written."""
+
 import re
 import subprocess
 import sys
@@ -7,7 +8,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 SETUP = [
-    'python3 -m venv .venv && . .venv/bin/activate && pip install . && viscobem run',
+    "python3 -m venv .venv && . .venv/bin/activate && pip install . && viscobem run",
     'python3 -m venv .venv && . .venv/bin/activate && pip install ".[test]" && pytest',
 ]
 
@@ -24,8 +25,14 @@ def test_readme_starts_with_the_two_setup_commands():
 
 def test_readme_python_quick_start_runs(tmp_path):
     code = re.search(r"```python\n(.*?)```", README, re.DOTALL).group(1)
-    run = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True,
-                         timeout=300, check=False)
+    run = subprocess.run(
+        [sys.executable, "-c", code],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
     assert run.returncode == 0, run.stderr
     assert "True" in run.stdout  # result.success
 
