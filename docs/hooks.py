@@ -22,6 +22,7 @@ A page holds a marker comment where a generated block goes:
 from __future__ import annotations
 
 import html
+import inspect
 import json
 import logging
 import os
@@ -41,6 +42,7 @@ else:  # pragma: no cover
 
 log = logging.getLogger("mkdocs.hooks.viscobem")
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # document and run the code of this checkout
 DOCS = ROOT / "docs"
 EXAMPLES = ROOT / "examples"
 SKIPPED_KEYS = {"issue", "targets"}  # bookkeeping of how a number was requested, not data
@@ -51,7 +53,6 @@ _gallery = {}  # example stem -> (stdout, figure site path or None)
 
 
 def _scene_keys():
-    sys.path.insert(0, str(ROOT))
     from viscobem_cli import scene
 
     described = tomllib.loads((DOCS / "_data" / "scene_keys.toml").read_text(encoding="utf-8"))
@@ -215,7 +216,6 @@ def _validation():
     out = []
     report_json, report_md = DOCS / "validation" / "report.json", DOCS / "validation" / "report.md"
     if report_json.is_file():
-        sys.path.insert(0, str(ROOT))
         from validation import report
 
         with tempfile.TemporaryDirectory() as tmp:
@@ -338,7 +338,25 @@ def on_page_content(content, page, config, files):
     return _ROLE.sub("", _MATH.sub(_mathml, content))
 
 
+_API = re.compile(r"^::: (bem\.[A-Za-z_]\w*)$", re.MULTILINE)
+
+
+def _defining_path(match):
+    """``::: bem.NAME`` as the path where NAME is defined: the package may re-export its public
+    names lazily (module ``__getattr__``), which static analysis cannot follow."""
+    import importlib
+
+    name = match.group(1)
+    try:
+        obj = getattr(importlib.import_module("bem"), name.split(".", 1)[1])
+    except AttributeError:
+        return match.group(0)
+    path = obj.__name__ if inspect.ismodule(obj) else f"{obj.__module__}.{obj.__qualname__}"
+    return f"::: {path}"
+
+
 def on_page_markdown(markdown, page, config, files):
+    markdown = _API.sub(_defining_path, markdown)
     blocks = {
         "<!-- generated:scene-keys -->": lambda: (
             _scene_keys() + "\n## Built-in scenes\n\n" + _builtin_scenes()
