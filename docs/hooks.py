@@ -3,10 +3,9 @@
 A page holds a marker comment where a generated block goes:
 
 - ``<!-- generated:scene-keys -->``: every scene key the parser accepts
-  (``viscobem_cli.scene.SCHEMA``), with the unit, default, range and meaning from
-  ``viscobem_cli.scene.KEY_INFO`` when the code defines it (``{section: {key: {"unit",
-  "default", "range", "doc"}}}``), else from ``docs/_data/scene_keys.toml``; then the
-  built-in scenes, read from their TOML files.
+  (``viscobem_cli.scene.SCHEMA``), with the type, unit, default, range and meaning from the
+  code's table of keys (``viscobem_cli.schema.KEYS``) where it exists, else from
+  ``docs/_data/scene_keys.toml``; then the built-in scenes, read from their TOML files.
 - ``<!-- generated:validation -->``: the latest validation report (``docs/validation/``:
   ``report.json`` rendered by ``validation.report``, else ``report.md``) and the quick set's
   stored baselines (``validation/baselines/quick.json``).
@@ -52,37 +51,66 @@ _gallery = {}  # example stem -> (stdout, figure site path or None)
 # --- scenes --------------------------------------------------------------------------------
 
 
+def _key_table():
+    """{section: {key: {type, unit, default, range, doc}}}: the code's own table of scene keys
+    (``viscobem_cli.schema.KEYS``) where it exists, else ``docs/_data/scene_keys.toml``."""
+    try:
+        from viscobem_cli import schema
+    except ImportError:
+        schema = None
+    if schema is not None and hasattr(schema, "KEYS"):
+        table = {}
+        for k in schema.KEYS:
+            table.setdefault(k.section, {})[k.name] = {
+                "type": k.type,
+                "unit": k.unit,
+                "default": _toml_value(k.default),
+                "range": k.valid,
+                "doc": k.help,
+            }
+        return table
+    return tomllib.loads((DOCS / "_data" / "scene_keys.toml").read_text(encoding="utf-8"))
+
+
+def _toml_value(v):
+    if v is None:
+        return ""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return str(v)
+
+
 def _scene_keys():
     from viscobem_cli import scene
 
-    described = tomllib.loads((DOCS / "_data" / "scene_keys.toml").read_text(encoding="utf-8"))
-    for section, keys in getattr(scene, "KEY_INFO", {}).items():  # the code's own, if it has them
-        for key, info in keys.items():
-            described.setdefault(section, {}).setdefault(key, {}).update(info)
+    described = _key_table()
     out = []
     for section, keys in scene.SCHEMA.items():
         keys = [k for k in keys if section or k not in scene.SCHEMA]  # top level: not the tables
         if not keys:
             continue
         out.append(f"### `[{section}]`\n" if section else "### Top level\n")
-        out.append("| key | unit | default | valid values | meaning |\n|---|---|---|---|---|")
         info = described.get(section, {})
+        typed = any(d.get("type") for d in info.values())
+        out.append(
+            "| key |" + (" type |" if typed else "") + " unit | default | valid values | meaning |"
+        )
+        out.append("|---|" + ("---|" if typed else "") + "---|---|---|---|")
         for key in _ordered(keys, info):
             d = info.get(key)
             if d is None:
-                log.info(
-                    "scene key [%s] %s has no description in docs/_data/scene_keys.toml",
-                    section,
-                    key,
-                )
+                log.info("scene key [%s] %s is not described", section, key)
                 d = {"doc": "(not described yet: see `viscobem scene`)"}
-            cells = [
-                f"`{key}`",
-                d.get("unit", ""),
-                d.get("default", "") or "none",
-                d.get("range", ""),
-                d.get("doc", ""),
-            ]
+            cells = (
+                [f"`{key}`"]
+                + ([d.get("type", "")] if typed else [])
+                + [
+                    d.get("unit", ""),
+                    d.get("default", "") or "none",
+                    d.get("range", ""),
+                    d.get("doc", ""),
+                ]
+            )
             out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
         out.append("")
     return "\n".join(out)
