@@ -202,6 +202,10 @@ def _record(path, title):
     }
     if scalars:
         out.append(", ".join(f"{k}: {_fmt(v)}" for k, v in scalars.items()) + "\n")
+    xi = next(
+        (v["xi"] for v in data.values() if isinstance(v, dict) and isinstance(v.get("xi"), list)),
+        None,
+    )
     for key, value in data.items():
         if key in SKIPPED_KEYS:
             continue
@@ -213,7 +217,10 @@ def _record(path, title):
         elif isinstance(value, list) and value and all(isinstance(r, str) for r in value):
             out.append(f"**{key}**: " + "; ".join(value) + "\n")
         elif isinstance(value, dict) and _columns(value):
-            body = _table(_columns(value))
+            rows = _columns(value)
+            if xi and "xi" not in value and len(xi) == len(rows):  # the sweep's speeds, shared
+                rows = [{"xi": x, **r} for x, r in zip(xi, rows)]
+            body = _table(rows)
             out.append(f'!!! note "{key}"\n')
             out.append("\n".join("    " + line for line in body.splitlines()) + "\n")
         elif isinstance(value, dict) and value:
@@ -282,8 +289,14 @@ def _demote(markdown):
 # --- gallery ---------------------------------------------------------------------------------
 
 
+GALLERY_ORDER = ["friction_curve", "hunter_cylinder", "westergaard", "material_forms", "anisotropy"]
+
+
 def _scripts():
-    return sorted(p for p in EXAMPLES.glob("*.py") if not p.name.startswith("_"))
+    """The examples: those named in GALLERY_ORDER first, in that order, then the others."""
+    scripts = [p for p in EXAMPLES.glob("*.py") if not p.name.startswith("_")]
+    rank = {name: i for i, name in enumerate(GALLERY_ORDER)}
+    return sorted(scripts, key=lambda p: (rank.get(p.stem, len(rank)), p.stem))
 
 
 def _run_example(script, out_dir):
