@@ -289,7 +289,14 @@ def _demote(markdown):
 # --- gallery ---------------------------------------------------------------------------------
 
 
-GALLERY_ORDER = ["friction_curve", "hunter_cylinder", "westergaard", "material_forms", "anisotropy"]
+GALLERY_ORDER = [
+    "friction_curve",
+    "hunter_cylinder",
+    "sphere_sliding",
+    "westergaard",
+    "material_forms",
+    "anisotropy",
+]
 
 
 def _scripts():
