@@ -245,7 +245,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
         from validation import vtk_io
 
         written += vtk_io.write_sweep(out / "vtk", scene.surface, [fields[i] for i in sorted(fields)],
-                                      scene.xi[sorted(fields)])
+                                      scene.xi[sorted(fields)], material=scene.material)
         stages["vtk"] = time.perf_counter() - t0
         stages_run.append("vtk")
     record["files"] = written
@@ -291,5 +291,5 @@ def _fields_of_first(scene, recs, points_dir):
         data = load_fields(points_dir, rec, scene.surface)
         if data is not None and "pressure" in data:
             fields[i] = SimpleNamespace(friction=rec["friction"], contact_fraction=rec["contact_fraction"],
-                                        **data)
+                                        speed=rec["speed"], load=rec["load"], approach=rec["approach"], **data)
     return fields
