@@ -29,6 +29,11 @@ class Perturbation:
     speed: float = 1.0
     load: float = 1.0
 
+    @property
+    def active(self):
+        """Names of the inputs this perturbation changes."""
+        return tuple(k for k in ("E_inf", "E0", "times", "speed", "load") if getattr(self, k) != 1.0)
+
     def material(self, m):
         """The perturbed :class:`bem.Material` (``m`` itself when nothing changes)."""
         from bem import Material
@@ -62,11 +67,15 @@ class Tamper:
         self.changed = set()
         self.cache = {} if cache is None else cache
 
-    def inputs(self, solver, material, speed, load):
-        """``(material, speed, load)`` as solver ``solver`` should see them."""
+    def inputs(self, solver, material, speed, load, insensitive=()):
+        """``(material, speed, load)`` as solver ``solver`` should see them.
+
+        ``insensitive`` names the inputs (``"times"``, ``"speed"``, ...) the compared quantities do
+        not depend on (e.g. the relaxation times in the two elastic limits of a step load): a
+        perturbation of those is applied but not counted as a change of the solver's physics."""
         p = self.perturbation
         m2, v2, l2 = p.material(material), speed * p.speed, load * p.load
-        if m2 is not material or v2 != speed or l2 != load:
+        if (m2 is not material or v2 != speed or l2 != load) and not set(p.active) & set(insensitive):
             self.changed.add(solver)
         return m2, v2, l2
 

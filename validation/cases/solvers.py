@@ -106,8 +106,9 @@ def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None, **optio
 
 
 def _linear_residual(res):
+    """The solver's ``||K u - f|| / ||f||``, or None when this FEM does not report it."""
     value = getattr(res, "linear_residual", None)
-    return None if value is None else float(value)
+    return None if value is None or not np.isfinite(value) else float(value)
 
 
 def _without_fields(res):

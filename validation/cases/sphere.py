@@ -55,7 +55,8 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
     lam = float(material.creep_times[0])
     out = CaseOutput()
     # --- FEM: both elastic limits from one step-load run
-    m_fem, _, p_fem = tamper.inputs("fem", material, 0.0, P)
+    # the two elastic limits depend on the moduli and the load only
+    m_fem, _, p_fem = tamper.inputs("fem", material, 0.0, P, insensitive=("times", "speed"))
     fem, cost = metrics.measure(_fem_indentation, m_fem, [0.0, 1000 * lam], cfg["resolution"], 5, p_fem)
     out.cost("fem", "t=0+, 1000 lambda", cost, f"{fem.n_unknowns} unknowns, h = {fem.element_size:.3e} m")
     t = cfg["tol"]["fem"]
@@ -114,6 +115,9 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
                 mu0 = low_speed_friction(material, radius=R, speed=V)
                 out.check("low_speed_asymptote_rel_error", name, label, metrics.rel_diff(b["friction"], mu0),
                           tb["asymptote"], why["asymptote"])
+                if "excess" in tb:
+                    out.check("low_speed_asymptote_excess", name, label, (b["friction"] - mu0) / mu0, tb["excess"],
+                              why["excess"])
         low = [(s, b["friction"]) for s, b in zip(labels, sols) if s in cfg["s"]]
         if low:
             curves[name] = tuple(np.array(v) for v in zip(*low))
@@ -185,7 +189,7 @@ def run_creep(*, quick, vtk_dir, root, tamper):
 WHY_FEM = {
     "edge": "edge from extrapolated p^2; measured <= 0.15 element; half an element",
     "approach": "domain truncation a/L ~ 1e-3 plus O(h^2); measured <= 0.27 % (res 4)",
-    "peak": "axis pressure extrapolated in r^2 from two nodes; measured 1.1 % (res 4)",
+    "peak": "axis pressure extrapolated in r^2 from two nodes; measured 0.9-1.1 % (res 4); margin 1.4x",
     "peak_creep": "largest nodal pressure against the exact maximum over r (on the axis for E_inf/E0 = 3; an "
                   "off-axis ring at higher ratios); measured 0.5-0.9 % (res 4), 0.10-0.24 % (res 8)",
     "axis": "axis pressure (extrapolated in r^2) against the exact one on the axis at the last time; "
@@ -202,7 +206,10 @@ WHY_BEM = {
     "peak": "periodic images (a/L)^3 ~ 2e-3 plus O(dx^2); measured 0.25 %",
     "edge": "sampling error half a cell plus the solver's; one cell",
     "asymptote": "discretisation of the edge cells ~ dx^1.5 (measured 1.7 % at 12 cells, 1 % at 16) "
-                 "plus the next-order term ~ 0.67 s",
+                 "plus the next-order term ~ 0.67 s; margin 1.4x (12 cells)",
+    "excess": "signed (mu - mu0) / mu0: the periodic BEM's friction lies below the asymptote at every grid measured "
+              "(-1.6 to -1.8 % at 12 cells, -0.9 to -1.2 % at 16) and the next-order term (-0.67 s) is negative "
+              "too, so an excess above +0.5 % is no discretisation error",
 }
 # Isolated BEM (2-D, DC-FFT; square of 3 a0, dx = a_inf / cells), uniform and adaptive give the same
 # pressures at rest: measured L2 0.82 % / 0.62 % (rest) and 1.56 % / 0.91 % (glassy: fewer cells per radius)
@@ -214,24 +221,24 @@ WHY_BEM = {
 WHY_ISO = {
     "l2": "square-root edge on a square grid ~ dx/a; measured 0.82 % (rest) and 1.56 % (glassy) at 12 cells, "
           "0.62 % / 0.91 % at 16",
-    "peak": "O(dx^2); measured <= 1.5e-3",
+    "peak": "O(dx^2); measured <= 1.5e-3 (12 cells, glassy); margin 2x at 12 cells",
     "edge": "sampling error half a cell plus the solver's; one cell",
-    "asymptote": "collocation ~ dx/a: measured 0.6-1.7 % at s = 1e-3..1e-2 (12-16 cells) plus the "
-                 "next-order term ~ 0.67 s",
+    "asymptote": "collocation ~ dx/a: measured 0.6-1.7 % at s = 1e-3..1e-2 (12-16 cells; 1.2 % at the quick "
+                 "12 cells, s = 1e-2: margin 2.1x) plus the next-order term ~ 0.67 s",
 }
 WHY = {"bem-periodic": WHY_BEM, "bem-isolated-uniform": WHY_ISO, "bem-isolated-adaptive": WHY_ISO}
-_ISO_Q = dict(l2=0.025, peak=0.005, edge=1.0, asymptote=0.04)
+_ISO_Q = dict(l2=0.025, peak=0.003, edge=1.0, asymptote=0.025)
 _ISO_F = dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.03)
 QUICK_SPHERE = dict(s=[1e-2], cells=12, resolution=4,
-                    tol={"fem": dict(edge=0.5, approach=0.005, peak=0.02, l2=0.08),
-                         "bem-periodic": dict(l2=0.02, peak=0.005, edge=1.0, asymptote=0.03),
+                    tol={"fem": dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08),
+                         "bem-periodic": dict(l2=0.02, peak=0.005, edge=1.0, asymptote=0.025, excess=0.005),
                          "bem-isolated-uniform": _ISO_Q, "bem-isolated-adaptive": _ISO_Q})
 FULL_SPHERE = dict(s=[1e-3, 3e-3, 1e-2], cells=16, resolution=8,
                    tol={"fem": dict(edge=0.5, approach=0.004, peak=0.01, l2=0.04),
-                        "bem-periodic": dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.02),
+                        "bem-periodic": dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.02, excess=0.005),
                         "bem-isolated-uniform": _ISO_F, "bem-isolated-adaptive": _ISO_F})
 QUICK_CREEP = dict(t=[0.0, 0.3, 1.0, 3.0, 10.0], resolution=4, steps_per_decade=10,
-                   tol=dict(edge=0.5, approach=0.005, peak=0.02, l2=0.08, axis=0.01))
+                   tol=dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08, axis=0.01))
 FULL_CREEP = dict(t=[0.0, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0], resolution=8, steps_per_decade=20,
                   tol=dict(edge=0.5, approach=0.004, peak=0.015, l2=0.04, axis=0.004))
 
