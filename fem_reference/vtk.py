@@ -125,7 +125,8 @@ def metadata(result):
     a0 = _hertz_half_width(m.E0, m.nu, result.radius, result.load)
     lam = float(np.max(m.creep_times)) if m.creep_times.size else 0.0
     return dict(speed=[result.speed], load=[result.load], radius=[result.radius], E0=[m.E0], E_inf=[m.E_inf],
-                nu=[m.nu], prony_moduli=np.asarray(m.moduli, float), relaxation_times=np.asarray(m.relaxation_times, float),
+                nu=[m.nu], prony_moduli=np.asarray(m.moduli, float),
+                relaxation_times=np.asarray(m.relaxation_times, float),
                 creep_times=np.asarray(m.creep_times, float), dimensionless_speed=[result.speed * lam / a0],
                 friction=[result.friction], approach=[result.approach], units=[UNITS])
 

@@ -5,10 +5,10 @@ so the bounds are 1e-12 unless stated.
 """
 import numpy as np
 import pytest
+from conftest import dense_operator, make_prony30, make_seed
 
 from bem import Material
 from bem.periodic import PeriodicHalfSpace
-from conftest import dense_operator, make_prony30, make_seed
 
 L = 1e-3
 SHAPES = [(64,), (63,), (16, 16), (15, 15)]  # even and odd n: with and without Nyquist modes

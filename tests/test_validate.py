@@ -16,7 +16,7 @@ from validation import baselines, metrics
 from validation.cases import CASES, cylinder, periodic
 from viscobem_cli.main import main
 
-CHEAP = ["full_contact_rough", "elastic_rough_dense"]
+CHEAP = ["full_contact_rough", "elastic_rough_dense", "rubber"]
 
 
 # ------------------------------------------------------------------ metrics
@@ -343,3 +343,14 @@ def test_quick_set_matches_the_stored_baselines(tmp_path):
     assert main(["validate", "--quick", "--no-progress", "--out", str(tmp_path)]) == 0
     record = json.loads((tmp_path / "report.json").read_text())
     assert record["baseline"]["ok"] and record["summary"]["failed"] == []
+
+
+@pytest.mark.slow
+def test_rubber_fem_against_bem():
+    """The full rubber case: every BEM solver against the isolated BEM on twice the cells at the
+    friction peak and a decade below, and the FEM against that reference on its material."""
+    out = CASES["rubber"](quick=False)
+    failed = [c.key for c in out.checks if not c.passed]
+    assert not failed, failed
+    assert {c.solver for c in out.checks} >= {"fem vs bem-reference", "bem-periodic vs bem-reference",
+                                               "bem-isolated-adaptive vs bem-reference"}

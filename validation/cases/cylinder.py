@@ -69,16 +69,17 @@ SOLVERS = {"bem-periodic": _bem, "bem-isolated-uniform": _isolated("uniform"),
            "bem-isolated-adaptive": _isolated("adaptive"), "fem": _fem}
 
 
-def solve_all(solvers, material, speeds, values, cfg, vtk_dir, root, out, tamper, load=P, references=()):
+def solve_all(solvers, material, speeds, values, cfg, vtk_dir, root, out, tamper, load=P, references=(),
+              label_name="s"):
     """Run every solver at every speed; record costs and VTK; return ``{solver: [outputs]}``.
 
-    ``values`` are the speed parameters ``s`` (labels ``s=...``, the .pvd time values). Solvers
+    ``values`` are the speed parameters (labels ``<label_name>=...``, the .pvd time values). Solvers
     named in ``references`` get the true inputs and are computed once for every
     perturbation (``tamper.reference``); the others get ``tamper.inputs``.
     """
     runs = {name: [] for name in solvers}
     written = {name: [] for name in solvers}
-    labels = [f"s={v:g}" for v in values]
+    labels = [f"{label_name}={v:g}" for v in values]
     for k, (V, label) in enumerate(zip(speeds, labels)):
         for name, adapter in solvers.items():
             vtk = None
