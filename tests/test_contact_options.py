@@ -44,7 +44,7 @@ def test_every_field_has_a_docstring_line():
     """Each tunable says what it trades (the attribute docstring right under it)."""
     source = inspect.getsource(ContactOptions)
     for f in dataclasses.fields(ContactOptions):
-        head, _, rest = source.partition(f"\n    {f.name}:")
+        _head, _, rest = source.partition(f"\n    {f.name}:")
         assert rest, f.name
         assert rest.split("\n")[1].strip().startswith('"""'), f"{f.name} has no docstring line"
 
