@@ -24,7 +24,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from . import fft
+from .parallel import get_threads
 
 __all__ = ["line_preconditioner"]
 
@@ -33,10 +33,10 @@ _POOL = None  # ((pid, workers), executor): see _run
 
 def _run(func, items):
     """``func(item)`` for every item, on as many threads as :mod:`bem.fft` uses cores
-    (``fft.WORKERS``; 1 runs them here): numpy releases the GIL in the batched inverses and
+    (:func:`bem.parallel.get_threads`; 1 runs them here): numpy releases the GIL in the batched inverses and
     products, and BLAS itself stays single-threaded."""
     global _POOL
-    workers = fft.WORKERS
+    workers = get_threads()
     if workers is None or workers < 1:
         workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
     if workers == 1 or len(items) < 2:

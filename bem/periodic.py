@@ -21,6 +21,7 @@ from . import fft
 
 __all__ = ["PeriodicHalfSpace"]
 
+
 def _reciprocal(a):
     """``1 / a`` where ``a != 0``, else 0 (the mean mode of a symbol)."""
     out = np.zeros_like(a)

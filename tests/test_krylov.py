@@ -75,7 +75,7 @@ def test_symmetric_warm_start_stops_cycling():
     contact, without the coarse-grid start: the symmetric-part warm start cycles between two
     sets; stopping it once the number of changes stalls took the solve from 4587 to 2883
     operator products (1837 with inner tolerances that tighten only near the solution)."""
-    from benchmarks.periodic import LENGTH, materials, surface_heights
+    from viscobem_bench.periodic_problem import LENGTH, materials, surface_heights
 
     s = bem.surfaces.from_heights(surface_heights(512), LENGTH)
     rubber, speed = materials()["rubber20"]
@@ -97,7 +97,7 @@ def test_preconditioned_contact_solve_agrees_and_saves_products(material):
     speed = 1e-2 * 0.01 / 0.01
     out = {}
     for flag in (False, True):
-        bem.sliding._operators.clear()
+        bem.sliding.clear_operator_cache()
         out[flag] = bem.solve(s, material, speed=speed, load=3.0, rtol=1e-10,
                               contact_options=ContactOptions(precondition=flag))
     plain, pre = out[False], out[True]

@@ -94,7 +94,6 @@ def test_line_preconditioner_is_restricted_creep_inverse_after_elastic_inverse(s
 def test_line_preconditioner_threads_change_nothing(monkeypatch):
     """Its batches (``chunk`` lines each) run on the FFT's cores; one core or two give
     the same numbers to the last bit."""
-    from bem import fft
     shape = (24, 3 * 32 + 5)  # four batches of 32 lines (the default chunk)
     op = PeriodicHalfSpace(shape, L, RUBBER, FAST)
     rng = np.random.default_rng(5)
@@ -102,8 +101,8 @@ def test_line_preconditioner_threads_change_nothing(monkeypatch):
     r = rng.standard_normal(np.count_nonzero(contact_set))
     results = []
     for workers in (1, 2):
-        monkeypatch.setattr(fft, "WORKERS", workers)
-        results.append(lines_of(op, contact_set)(r))
+        with bem.use_threads(workers):
+            results.append(lines_of(op, contact_set)(r))
     np.testing.assert_array_equal(results[0], results[1])
     assert np.all(np.isfinite(results[0])) and np.any(results[0] != 0)
 
