@@ -33,9 +33,9 @@ Every tunable is a field of :class:`ContactOptions`, with what it trades and why
 Convergence test, stated exactly: the solve succeeds when the complementarity residual
 ``r = max_i |min(p_i / p_ref, g_i / h_ref)|`` is ``<= rtol``, with ``p_ref`` the mean pressure
 and ``h_ref = gap_scale a0 p_ref`` (:class:`ContactOptions`), ``gap_scale`` times the
-displacement of one cell under the mean pressure, or the peak-to-valley height where that is
-smaller (so penetration stays small against the roughness); the inner solves stop a decade
-below it.
+displacement of one cell under the mean pressure, kept between ``1e-4`` of the peak-to-valley
+height (the round-off of the gap limits tight solves) and that height (penetration stays small
+against the roughness); the inner solves stop a decade below it.
 ``r = 0`` iff ``p >= 0``, ``g >= 0`` and ``p g = 0``. A gap error ``e`` on the contact set
 moves the pressure by about ``e / a0``, the stiffness of one cell, so this scale, unlike a
 height scale of the surface, bounds the pressure error: measured, the relative L2 pressure

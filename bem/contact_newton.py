@@ -84,8 +84,9 @@ def problem_scales(op, heights, mean_pressure, approach, rtol, options, *, stron
     """The scaled :class:`~bem.contact_inner.Problem`: ``p_ref`` the mean pressure (under
     displacement control ``p_mean``, that of the first Newton point, once known) and ``h_ref =
     gap_scale a0 p_ref``, ``gap_scale`` times the displacement of one cell under it
-    (``gap_scale_strong`` for strongly non-symmetric operators, ``strong``), or the surface's
-    height range where that is smaller (near full contact of soft solids)."""
+    (``gap_scale_strong`` for strongly non-symmetric operators, ``strong``), kept between
+    ``gap_floor_share`` of the surface's height range and that range (near full contact of
+    soft solids)."""
     ht = heights - heights.max()
     load_control = mean_pressure is not None
     a0 = op.self_influence()
@@ -96,7 +97,9 @@ def problem_scales(op, heights, mean_pressure, approach, rtol, options, *, stron
     else:  # before the first iterate: the pressure that pushes one cell by the approach
         p_ref = max(float(approach), np.ptp(ht) * 1e-3) / a0
     h_ref = (options.gap_scale_strong if strong else options.gap_scale) * a0 * p_ref
-    h_ref = min(h_ref, float(np.ptp(ht))) or h_ref  # and never looser than the height range
+    ptp = float(np.ptp(ht))
+    if ptp > 0:  # between round-off of the heights and their range (see ContactOptions)
+        h_ref = min(max(h_ref, options.gap_floor_share * ptp), ptp)
     return Problem(ht=ht, load_control=load_control, approach=None if load_control else float(approach),
                    p_ref=p_ref, h_ref=h_ref, c=1.0 / a0, final_atol=options.final_atol_share * rtol * h_ref)
 

@@ -17,7 +17,7 @@ __all__ = ["ContactOptions"]
 # (low, high, low inclusive) of every numeric field; booleans and ``precondition`` are checked apart
 _RANGES = {
     "inner_eta": (0.0, 1.0, False), "inner_eta_min": (0.0, 1.0, False), "gap_scale": (0.0, math.inf, False),
-    "gap_scale_strong": (0.0, math.inf, False), "inner_relax": (1.0, math.inf, True),
+    "gap_scale_strong": (0.0, math.inf, False), "gap_floor_share": (0.0, 1.0, True), "inner_relax": (1.0, math.inf, True),
     "inner_tighten": (0.0, 1.0, False), "inner_maxiter_per_sqrt_n": (0.0, math.inf, True),
     "inner_maxiter_base": (0, math.inf, True), "final_atol_share": (0.0, 1.0, False),
     "atol_floor": (0.0, 1.0, False), "stall_ratio": (0.0, 1.0, False),
@@ -59,6 +59,8 @@ class ContactOptions:
     """Gap scale of the residual, in displacements of one cell under the mean pressure: so rtol bounds the pressure error."""
     gap_scale_strong: float = 0.3
     """The same for strongly non-symmetric operators, whose pressure error per gap error is larger."""
+    gap_floor_share: float = 1e-4
+    """Smallest gap scale as a share of the height range: below it round-off of the gap would stop tight solves."""
     final_atol_share: float = 0.1
     """Inner absolute tolerance as a share of ``rtol`` times the gap scale: a decade below the outer test."""
     atol_floor: float = 1e-3
