@@ -139,7 +139,7 @@ class ContactOptions:
                 if value is not None and not isinstance(value, bool):
                     raise InputError(f"options.precondition must be None, True or False, got {value!r}")
             elif f.name == "line_dtype":
-                if np.dtype(value) not in (np.dtype(np.float32), np.dtype(np.float64)):
+                if value not in (np.float32, np.float64):
                     raise InputError(f"options.line_dtype must be numpy.float32 or numpy.float64, got {value!r}")
             elif not isinstance(value, bool):
                 raise InputError(f"options.{f.name} must be True or False, got {value!r}")
