@@ -42,7 +42,6 @@ class ContactOptions:
     """Tunables of :func:`bem.contact.solve_contact`; validated on creation (``InputError``)."""
 
     # Newton iteration and its inexact inner solves
-
     inner_eta: float = 0.1
     """Inner forcing term while the set changes: loose solves are cheap and the set is wrong anyway."""
     inner_eta_min: float = 1e-4
@@ -56,9 +55,10 @@ class ContactOptions:
     inner_maxiter_base: int = 200
     """Inner products cap added to the above: small grids still get a useful solve."""
     gap_scale: float = 10.0
-    """Gap scale of the residual, in displacements of one cell under the mean pressure: so rtol bounds the pressure error."""
+    """Residual's gap scale in one cell's displacement under the mean pressure: larger is cheaper; 10 keeps
+    the pressure error under 4 rtol on the tested cases."""
     gap_scale_strong: float = 0.3
-    """The same for strongly non-symmetric operators, whose pressure error per gap error is larger."""
+    """The same for strongly non-symmetric operators, whose pressure error per gap error is larger (3 rtol)."""
     gap_floor_share: float = 1e-4
     """Smallest gap scale as a share of the height range: below it round-off of the gap would stop tight solves."""
     final_atol_share: float = 0.1
