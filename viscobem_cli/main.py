@@ -83,7 +83,7 @@ def _cmd_bench(args):
     if args.name == "import":
         from . import import_bench
 
-        import_bench.run(out_dir=args.out, repeats=2 if args.quick else 7)
+        import_bench.run(out_dir=args.out, repeats=1 if args.quick else 7)
         return 0
     if args.name != "all":
         module = importlib.import_module(f"benchmarks.{args.name}")
