@@ -134,7 +134,8 @@ def _cmd_validate(args):
             print(f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
                   f"(allowed +-{r['allowed']:.3g})")
         if comparison["missing"]:
-            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {comparison['missing'][0]['key']}); "
+            first = comparison["missing"][0]["key"]
+            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
                   f"regenerate with: viscobem validate --quick --update-baselines --out DIR")
         print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
         status = status or (0 if comparison["ok"] else 1)
