@@ -316,3 +316,16 @@ def test_a_sweep_that_misses_the_friction_peak_says_so(tmp_path):
     assert peak_warnings([bell], "x") == []
     falling = dict(bell, friction=[0.3, 0.2, 0.1])
     assert "lowest speed" in peak_warnings([falling], "x")[0] and "xi.start" in peak_warnings([falling], "x")[0]
+
+
+def test_fields_in_float64_on_request(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text(SMALL.replace("vtk = true", 'vtk = false\nplots = false\nfields_precision = "float64"'))
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
+    with np.load(tmp_path / "o" / "fields.npz") as f:
+        assert f["pressure"].dtype == np.float64 and f["displacement"].dtype == np.float64
+        assert np.allclose(f["pressure"].mean(axis=(1, 2)) * 0.01**2, 0.3, rtol=1e-12)  # exact to round-off
+    # the point field files are folded into fields.npz; the numbers stay per point
+    assert sorted(p.suffix for p in (tmp_path / "o" / "points").iterdir()) == [".json"] * 3
+    with pytest.raises(scenes.InputError, match="fields_precision"):
+        scenes.parse(SMALL.replace("[outputs]", '[outputs]\nfields_precision = "float16"'))
