@@ -25,6 +25,9 @@ _LAZY = {
     "errors": ("bem.errors", None),
     "anisotropy": ("bem.anisotropy", None),
     "persson": ("bem.persson", None),
+    "set_threads": ("bem.parallel", "set_threads"),
+    "get_threads": ("bem.parallel", "get_threads"),
+    "use_threads": ("bem.parallel", "use_threads"),
 }
 
 __all__ = list(_LAZY)

@@ -114,7 +114,7 @@ def check_sweep(surface, material, *, speeds, loads, rtol):
     :func:`bem.solve`; nothing is solved."""
     for f_n in loads:
         for speed in (float(np.min(speeds)), float(np.max(speeds))):
-            sliding._check_inputs(surface, material, speed, f_n, None, rtol)
+            sliding.check_inputs(surface, material, speed, f_n, None, rtol)
 
 
 def _loads(load):
@@ -156,7 +156,7 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
         raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {speeds!r}")
     loads, several = _loads(load)
-    checked = [sliding._check_inputs(surface, material, 0.0, x, None, rtol) for x in loads]
+    checked = [sliding.check_inputs(surface, material, 0.0, x, None, rtol) for x in loads]
     surface, rtol = checked[0][0], checked[0][4]
     from tqdm.auto import tqdm
 

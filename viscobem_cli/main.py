@@ -77,6 +77,14 @@ def _cmd_scene(args):
     return 0
 
 
+def run_scene_text(text, out):
+    """Run the study of a scene given as TOML text into ``out``; its record (for the benchmarks)."""
+    from . import scene as scenes
+    from .study import run_scene
+
+    return run_scene(scenes.parse(text), out, progress=False)
+
+
 def _cmd_bench(args):
     import importlib
 
@@ -86,12 +94,14 @@ def _cmd_bench(args):
         import_bench.run(out_dir=args.out, repeats=1 if args.quick else 7)
         return 0
     if args.name != "all":
-        module = importlib.import_module(f"benchmarks.{args.name}")
+        module = importlib.import_module(f"viscobem_bench.{args.name}")
         module.run(quick=args.quick, out_dir=args.out)
         return 0
-    from benchmarks import suite
+    from viscobem_bench import suite
 
-    suite.run(quick=args.quick, out_dir=args.out, readme=Path(args.readme) if args.readme else None)
+    from .scene import DEFAULT_SCENE
+
+    suite.run(quick=args.quick, out_dir=args.out, study=(run_scene_text, DEFAULT_SCENE.read_text()))
     return 0
 
 
@@ -115,6 +125,10 @@ def _cmd_validate(args):
     record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk,
                        progress=not args.no_progress)
     summary = record["summary"]
+    if args.sensitivity:
+        from validation.sensitivity import attach
+
+        attach(record, names, quick=args.quick, progress=not args.no_progress)
     comparison = None
     if compare_with:
         comparison = baselines.compare(record, baseline_path)
@@ -129,6 +143,10 @@ def _cmd_validate(args):
         print(f"  FAIL {k['case']}: {k['solver']} {k['metric']} at {k['label']} = {k['value']:.3g} "
               f"> {k['tolerance']:.3g} ({k['why']})")
     status = 0 if not summary["failed"] else 1
+    if args.sensitivity:
+        from validation.sensitivity import print_summary
+
+        status = print_summary(record) or status
     if comparison is not None:
         for r in comparison["regressions"]:
             print(f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
@@ -199,8 +217,6 @@ def build_parser():
                        choices=["all", "periodic", "fem", "isolated", "rubber_speeds", "import"],
                        help="all (default: every solver, scaling, skipping), one detailed benchmark, or "
                             "import (import time of bem against numpy + scipy)")
-    bench.add_argument("--readme", default=None, help="also regenerate the bench table in this README")
-    bench.add_argument("--no-readme", action="store_true", help="leave every README alone (the default)")
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)
@@ -215,6 +231,9 @@ def build_parser():
     val.add_argument("--no-baseline", action="store_true", help="with --quick: do not compare with the baselines")
     val.add_argument("--update-baselines", action="store_true",
                      help="with --quick: store this run's numbers as the new baselines")
+    val.add_argument("--sensitivity", action="store_true",
+                     help="rerun each case with deliberately wrong inputs (moduli, times, speed, load) and "
+                          "report which checks catch them (report.json['sensitivity'])")
     val.set_defaults(func=_cmd_validate)
     return parser
 

@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+import bem
 from bem import anisotropy
 from bem.sweep import sweep
 
@@ -143,9 +144,7 @@ def run_chunk(task, callback=None):
     ``single_thread`` (limit FFT threads to 1, for pool workers sharing the cores).
     """
     if task.get("single_thread"):
-        from bem import fft
-
-        fft.WORKERS = 1
+        bem.set_threads(1)
     out = Path(task["out"])
     indices = list(task["indices"])
     records = []
@@ -233,9 +232,7 @@ def load_fields(folder, rec, surface):
 
 
 def _pool_init():
-    from bem import fft
-
-    fft.WORKERS = 1
+    bem.set_threads(1)
     try:
         from threadpoolctl import threadpool_limits
 
