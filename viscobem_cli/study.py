@@ -35,8 +35,16 @@ import numpy as np
 from bem.sweep import check_sweep
 
 from . import analysis, guidance, records
-from .sweep import (STUDY_FIELDS, execute, load_fields, load_point, point_key, point_name, remove_stale_temporaries,
-                    write_atomic)
+from .sweep import (
+    STUDY_FIELDS,
+    execute,
+    load_fields,
+    load_point,
+    point_key,
+    point_name,
+    remove_stale_temporaries,
+    write_atomic,
+)
 
 __all__ = ["run_scene", "write_atomic", "fold_material"]
 
