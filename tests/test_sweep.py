@@ -302,3 +302,11 @@ def test_killed_sweep_resumes_with_identical_results(tmp_path):
     with np.load(out / "fields.npz") as f, np.load(tmp_path / "whole" / "fields.npz") as g:
         assert f["pressure"].shape == g["pressure"].shape == (12, 64, 64)
         assert np.allclose(f["pressure"], g["pressure"], rtol=0, atol=1e-5 * g["pressure"].max())
+
+
+@pytest.mark.parametrize("speeds", ["0.01", ["0.01", "0.1"], [True, False], [-1.0, 0.1], [[0.1, 0.2]]])
+def test_friction_curve_wants_speeds_as_numbers(speeds):
+    s = _scene(**{"realisations = 2": "realisations = 1"})
+    with pytest.raises(InputError, match="speeds must be") as err:
+        bem.friction_curve(s.surface, s.material, speeds=speeds, load=0.3)
+    assert "np.float64" not in str(err.value)
