@@ -38,8 +38,7 @@ from bem import Material, surfaces
 from bem.checks import check_positive
 from bem.errors import InputError
 
-from . import guidance
-from . import scene_values
+from . import guidance, scene_values
 from .catalog import SCENE_DIR, builtin_scenes, scene_path
 
 __all__ = ["Scene", "parse", "load", "describe_xi", "builtin_scenes", "SCENE_DIR", "DEFAULT_SCENE", "SCHEMA",

@@ -35,8 +35,16 @@ import numpy as np
 from bem.sweep import check_sweep
 
 from . import analysis, guidance, records
-from .sweep import (STUDY_FIELDS, execute, load_fields, load_point, point_key, point_name, remove_stale_temporaries,
-                    write_atomic)
+from .sweep import (
+    STUDY_FIELDS,
+    execute,
+    load_fields,
+    load_point,
+    point_key,
+    point_name,
+    remove_stale_temporaries,
+    write_atomic,
+)
 
 __all__ = ["run_scene", "write_atomic", "fold_material"]
 
@@ -249,6 +257,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     _write_record(out, scene, record, recs)  # the curves, for the plots
     advice = "Raise [surface] n until they agree." if scene.kind in ("sphere", "cylinder") else None
     record["warnings"] += guidance.friction_form_warnings(record["curves"], **({"advice": advice} if advice else {}))
+    record["warnings"] += guidance.peak_warnings(record["curves"], scene.xi_time_source)
     record["files"] = _outputs(scene, record, recs, points_dir, out, extras, stages)
     expected = len(scene.realisations) * len(scene.loads) * scene.speeds.size
     record["all_converged"] = bool(all(p["success"] for p in recs.values()) and len(recs) == expected)
