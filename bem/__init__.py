@@ -7,7 +7,9 @@ indenter slides in ``+x`` (see :mod:`bem.periodic` for the operator's convention
 from . import anisotropy, errors, persson, surfaces
 from .errors import ConvergenceError, InputError
 from .material import Material
+from . import temperature  # noqa: I001 (time-temperature shift laws)
 from .sliding import FrictionCurve, SlidingResult, friction_curve, solve
 
 __all__ = ["Material", "surfaces", "errors", "anisotropy", "persson", "solve", "friction_curve",
            "SlidingResult", "FrictionCurve", "InputError", "ConvergenceError"]
+__all__ += ["temperature"]
