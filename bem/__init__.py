@@ -4,12 +4,10 @@ Numerics only (numpy + scipy): importing ``bem`` pulls in no plotting, meshing o
 package. Units are SI throughout; heights are positive toward the half-space and the
 indenter slides in ``+x`` (see :mod:`bem.periodic` for the operator's conventions).
 """
-from . import anisotropy, errors, persson, surfaces
+from . import anisotropy, errors, persson, surfaces, temperature
 from .errors import ConvergenceError, InputError
 from .material import Material
-from . import temperature  # noqa: I001 (time-temperature shift laws)
 from .sliding import FrictionCurve, SlidingResult, friction_curve, solve
 
 __all__ = ["Material", "surfaces", "errors", "anisotropy", "persson", "solve", "friction_curve",
-           "SlidingResult", "FrictionCurve", "InputError", "ConvergenceError"]
-__all__ += ["temperature"]
+           "SlidingResult", "FrictionCurve", "InputError", "ConvergenceError", "temperature"]

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
+from . import master_curve
 from .checks import check_array, check_positive, check_range
 from .errors import InputError
 from .prony_fit import check_dma, default_times, fit_prony_series
@@ -237,16 +238,64 @@ class Material:
         Notes
         -----
         See :mod:`bem.prony_fit`: non-negative least squares on ``E'_fit/E' - 1`` and
-        ``E''_fit/E'' - 1``, so both moduli are fitted in relative error. Terms fitted as
-        zero are dropped.
+        ``E''_fit/E'' - 1``, so both moduli are fitted in relative error; terms fitted as
+        zero are dropped. On the default times (``times=None``, ``smoothing=0``) the kept
+        terms' times are then optimised too; given ``times`` are kept as they are.
         """
         w, e1, e2 = check_dma(frequencies, storage, loss, hz=hz)
         if times is None:
             taus = default_times(w, terms_per_decade)
         else:
             taus = check_array("times", times, ndim=1, positive=True)
-        E0, moduli, taus, report = fit_prony_series(w, e1, e2, taus, smoothing=smoothing)
+        E0, moduli, taus, report = fit_prony_series(w, e1, e2, taus, smoothing=smoothing, refine=times is None)
         return cls(E0, moduli, taus, nu, fit_report=report)
+
+    @classmethod
+    def fit_master_curve(cls, frequencies, temperatures, storage, loss, *, reference_temperature,
+                         shift="wlf", hz=False, terms_per_decade=3.0, smoothing=0.0, nu=0.5,
+                         temperature_tolerance=0.5, min_overlap=0.3, max_mismatch=0.05):
+        """Master curve and shift law from DMA sweeps at several temperatures.
+
+        Parameters
+        ----------
+        frequencies, storage, loss : array_like
+            One entry per measured point: frequency (rad/s, or Hz with ``hz=True``),
+            ``E'`` and ``E''`` (Pa, both > 0).
+        temperatures : array_like
+            Temperature of each point, K. Points within ``temperature_tolerance`` (K) of
+            each other form one isothermal sweep; at least 3 sweeps are needed.
+        reference_temperature : float
+            ``T_ref`` (K) of the returned material; within the measured range.
+        shift : {"wlf", "arrhenius"}
+            The law fitted to the shift factors.
+        terms_per_decade, smoothing, nu
+            As for :meth:`fit_prony`.
+        min_overlap : float
+            Fraction (0-1) of a sweep's span in log frequency that neighbouring sweeps must
+            share once shifted.
+        max_mismatch : float
+            Largest rms difference of log10 moduli (decades) between neighbouring sweeps
+            overlaid; beyond it the sweeps do not superpose and an InputError says so.
+
+        Returns
+        -------
+        (Material, WLF or Arrhenius)
+            The material at ``T_ref`` (its ``fit_report`` a
+            :class:`bem.master_curve.MasterCurveReport`: the fit's relative errors on the
+            shifted data and the shift factors) and the law, so that
+            ``material.at_temperature(T, law)`` describes the material at ``T``.
+
+        Notes
+        -----
+        The method (overlap shifting, the law, the fit) is described in
+        :mod:`bem.master_curve`.
+        """
+        E0, moduli, taus, law, report = master_curve.fit_master_curve(
+            frequencies, temperatures, storage, loss, reference_temperature=reference_temperature,
+            shift=shift, hz=hz, terms_per_decade=terms_per_decade, smoothing=smoothing,
+            temperature_tolerance=temperature_tolerance, min_overlap=min_overlap,
+            max_mismatch=max_mismatch)
+        return cls(E0, moduli, taus, nu, fit_report=report), law
 
     def at_temperature(self, T, shift):
         """The material at temperature ``T`` (K) under the shift law ``shift``.

@@ -22,11 +22,12 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import nnls
+from threadpoolctl import threadpool_limits
 
 from .checks import check_array, check_positive
 from .errors import InputError
 
-__all__ = ["FitReport", "fit_prony_series", "relative_errors"]
+__all__ = ["FitReport", "fit_prony_series", "relative_errors", "solve_nnls"]
 
 
 @dataclass(frozen=True)
@@ -111,30 +112,98 @@ def _smoothing_rows(w, e1, e2, taus, smoothing):
     return smoothing * np.hstack([np.zeros((d2.shape[0], 1)), d2])
 
 
-def fit_prony_series(w, e1, e2, taus, *, smoothing=0.0, loss_floor=1e-4):
-    """NNLS fit in relative error; returns ``(E0, moduli, times, report)`` (zero terms dropped).
-
-    ``w`` (rad/s), ``e1``, ``e2`` (Pa) are validated arrays (see :func:`check_dma`); ``taus``
-    (s) ascending or not. Raises InputError when the fit gives ``E0 <= 0``.
-    """
-    smoothing = check_positive("smoothing", smoothing, allow_zero=True)
-    taus = np.sort(np.asarray(taus, dtype=float))
+def solve_nnls(w, e1, e2, taus, *, smoothing=0.0, loss_floor=1e-4):
+    """``(x, rnorm)``: ``x = [E0, E_1..E_n]`` on the ascending ``taus`` and the residual norm."""
     a1, a2 = _design(w, taus)
-    mag = np.hypot(e1, e2)
-    s2 = np.maximum(e2, loss_floor * mag)
+    s2 = np.maximum(e2, loss_floor * np.hypot(e1, e2))
     a = np.vstack([a1 / e1[:, None], a2 / s2[:, None], _smoothing_rows(w, e1, e2, taus, smoothing)])
     b = np.concatenate([np.ones(w.size), e2 / s2, np.zeros(a.shape[0] - 2 * w.size)])
     colnorm = np.linalg.norm(a, axis=0)
     colnorm[colnorm == 0] = 1.0
-    x, _ = nnls(a / colnorm, b, maxiter=50 * a.shape[1])
-    x = x / colnorm
+    x, rnorm = nnls(a / colnorm, b, maxiter=50 * a.shape[1])
+    return x / colnorm, float(rnorm)
+
+
+def refine_terms(w, e1, e2, E0, moduli, times, *, loss_floor=1e-4, bounds=None):
+    """Move the times as well as the moduli: nonlinear least squares from the NNLS solution.
+
+    The unknowns are ``log E0``, ``log E_k`` and ``log tau_k`` (so every term stays positive),
+    the residuals the same relative errors as the NNLS fit, with an exact Jacobian. A
+    spectrum whose terms fall between the grid's times (a sparse one) is then matched
+    instead of approximated by pairs of neighbours. ``bounds`` ``(lo, hi)`` (s) keeps the
+    times inside the grid's span. Returns ``(E0, moduli, times)`` with merged equal times.
+    """
+    from scipy.optimize import least_squares
+
+    s2 = np.maximum(e2, loss_floor * np.hypot(e1, e2))
+    n = moduli.size
+
+    def parts(p):
+        u = w[:, None] * np.exp(p[1 + n:])[None, :]
+        d = 1.0 + u**2
+        return np.exp(p[0]), np.exp(p[1:1 + n]), u, d
+
+    def residual(p):
+        e0, ek, u, d = parts(p)
+        return np.concatenate([(e0 + (u**2 / d) @ ek) / e1 - 1.0, ((u / d) @ ek - e2) / s2])
+
+    def jacobian(p):
+        e0, ek, u, d = parts(p)
+        top = np.hstack([np.full((w.size, 1), e0), ek * u**2 / d, ek * 2 * u**2 / d**2]) / e1[:, None]
+        bot = np.hstack([np.zeros((w.size, 1)), ek * u / d, ek * u * (1 - u**2) / d**2]) / s2[:, None]
+        return np.vstack([top, bot])
+
+    p0 = np.concatenate([[np.log(E0)], np.log(moduli), np.log(times)])
+    lo = np.full(p0.size, -np.inf)
+    hi = np.full(p0.size, np.inf)
+    if bounds is not None:
+        lo[1 + n:], hi[1 + n:] = np.log(bounds[0]), np.log(bounds[1])
+        p0[1 + n:] = np.clip(p0[1 + n:], lo[1 + n:] + 1e-9, hi[1 + n:] - 1e-9)
+    with threadpool_limits(1):  # small dense SVDs: threads only contend
+        sol = least_squares(residual, p0, jac=jacobian, bounds=(lo, hi), method="trf", x_scale="jac",
+                            xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=100)
+    if not sol.cost <= 0.5 * np.sum(residual(p0) ** 2):
+        return E0, moduli, times
+    ek, t = merge_close_terms(np.exp(sol.x[1:1 + n]), np.exp(sol.x[1 + n:]))
+    return float(np.exp(sol.x[0])), ek, t
+
+
+def merge_close_terms(moduli, times, decades=0.01, rel=1e-10):
+    """Terms within ``decades`` of each other merged (moduli summed, times averaged in log
+    weighted by modulus) and terms below ``rel`` of the total dropped: nearly repeated
+    times make the creep interconversion ill-conditioned and add nothing to the fit."""
+    order = np.argsort(times)
+    ek, lt = moduli[order], np.log10(times[order])
+    group = np.concatenate([[0], np.cumsum(np.diff(lt) > decades)])
+    mk = np.bincount(group, weights=ek)
+    tk = 10.0 ** (np.bincount(group, weights=ek * lt) / mk)
+    keep = mk > rel * mk.sum()
+    return mk[keep], tk[keep]
+
+
+def fit_prony_series(w, e1, e2, taus, *, smoothing=0.0, loss_floor=1e-4, refine=True):
+    """NNLS fit in relative error; returns ``(E0, moduli, times, report)`` (zero terms dropped).
+
+    ``w`` (rad/s), ``e1``, ``e2`` (Pa) are validated arrays (see :func:`check_dma`); ``taus``
+    (s) ascending or not. With ``refine`` and no smoothing, the terms' times are then moved
+    too (:func:`refine_terms`); smoothing is defined on the fixed grid, so it keeps the times.
+    Raises InputError when the fit gives ``E0 <= 0``.
+    """
+    smoothing = check_positive("smoothing", smoothing, allow_zero=True)
+    taus = np.sort(np.asarray(taus, dtype=float))
+    x, _ = solve_nnls(w, e1, e2, taus, smoothing=smoothing, loss_floor=loss_floor)
     if not x[0] > 0:
         raise InputError("fit_prony: the data imply a relaxed modulus E0 <= 0; extend the data to lower "
                          "frequencies or pass times covering them")
     keep = x[1:] > 1e-12 * x.sum()
-    moduli, times = x[1:][keep], taus[keep]
+    E0, moduli, times = float(x[0]), x[1:][keep], taus[keep]
+    if refine and smoothing == 0 and moduli.size:
+        E0, moduli, times = refine_terms(w, e1, e2, E0, moduli, times, loss_floor=loss_floor,
+                                         bounds=(taus[0], taus[-1]))
+    a1, a2 = _design(w, times)
+    x = np.concatenate([[E0], moduli])
     fitted = a1 @ x + 1j * (a2 @ x)
-    errs = relative_errors(fitted, e1, np.maximum(e2, loss_floor * mag))
+    errs = relative_errors(fitted, e1, np.maximum(e2, loss_floor * np.hypot(e1, e2)))
     report = FitReport(*errs, terms=int(moduli.size), smoothing=smoothing,
                        frequency_band=(float(w.min()), float(w.max())))
-    return float(x[0]), moduli, times, report
+    return E0, moduli, times, report

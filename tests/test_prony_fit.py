@@ -10,7 +10,7 @@ import pytest
 
 from bem import Material
 from bem.errors import InputError
-from bem.prony_fit import FitReport
+from bem.prony_fit import FitReport, default_times, fit_prony_series
 
 W = np.logspace(-4, 8, 121)
 
@@ -32,7 +32,7 @@ def errors(fit, m):
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_both_moduli_hold_over_12_decades_with_1_percent_noise(seed):
-    """Targets E' 3 %, E'' 5 %. Measured (seeds 1-3): E' 0.42-0.52 %, E'' 0.66-0.87 %."""
+    """Targets E' 3 %, E'' 5 %. Measured (seeds 1-3): E' 0.46-0.54 %, E'' 0.82-1.02 %."""
     m = dma_truth()
     e = m.complex_modulus(W)
     assert 0.005 < np.min(e.imag[-10:] / e.real[-10:]) < 0.06  # a glassy tail with a small tan delta
@@ -106,3 +106,19 @@ def test_from_prony_stores_terms_longest_time_first_and_keeps_pairs():
     np.testing.assert_array_equal(m.relaxation_times, [1.0, 1e-2, 1e-4])
     np.testing.assert_array_equal(m.moduli, [1.0e6, 3.0e6, 2.0e6])
     assert np.all(np.diff(m.creep_times) < 0)
+
+
+def test_optimised_times_match_a_spectrum_between_the_grid_times():
+    """Noise-free data from 11 terms placed between the default grid's times (3 per decade):
+    NNLS on the grid alone leaves measured 3.8 % in E' and 4.1 % in E''; moving the times
+    too recovers the series to round-off (measured 4e-15, bound 1e-9)."""
+    m = Material.from_prony(E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-6.85, 3.15, 11))
+    e = m.complex_modulus(W)
+    taus = default_times(W, 3.0)
+    grid = fit_prony_series(W, e.real, e.imag, taus, refine=False)
+    moved = fit_prony_series(W, e.real, e.imag, taus)
+    d_grid = errors(Material.from_prony(E0=grid[0], moduli=grid[1], times=grid[2]), m)
+    d_moved = errors(Material.from_prony(E0=moved[0], moduli=moved[1], times=moved[2]), m)
+    assert max(d_grid) > 1e-2 and max(d_moved) < 1e-9
+    assert moved[1].size == 11
+    np.testing.assert_allclose(np.sort(moved[2]), np.sort(m.relaxation_times), rtol=1e-9)
