@@ -8,6 +8,7 @@
                                               skipping; regenerates README's bench table
     viscobem bench periodic|fem|isolated [--quick] --out DIR   one solver's detailed benchmark
     viscobem bench rubber_speeds [--quick] --out DIR   the periodic benchmark's rubber over speed
+    viscobem bench materials [--quick] --out DIR   Prony fits and master curves against pyvisco
     viscobem scene                            print the built-in default scene
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
@@ -147,7 +148,8 @@ def build_parser():
     scene = sub.add_parser("scene", help="print the built-in default scene (a template)")
     scene.set_defaults(func=_cmd_scene)
     bench = sub.add_parser("bench", help="run a benchmark")
-    bench.add_argument("name", nargs="?", default="all", choices=["all", "periodic", "fem", "isolated", "rubber_speeds"],
+    bench.add_argument("name", nargs="?", default="all", choices=["all", "periodic", "fem", "isolated", "rubber_speeds",
+                                                                  "materials"],
                        help="all (default: every solver, scaling, skipping) or one detailed benchmark")
     bench.add_argument("--readme", default=None, help="README whose bench table to regenerate "
                        "(default: the project's README.md)")
