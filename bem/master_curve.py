@@ -64,17 +64,21 @@ class MasterCurveReport(FitReport):
         ``log10 a_T`` of the fitted law at the same temperatures.
     law_rms : float
         Root-mean-square of ``log_shift - law_log_shift``, decades.
+    law : WLF or Arrhenius
+        The fitted law (also returned beside the material).
     """
 
     temperatures: tuple = ()
     log_shift: tuple = ()
     law_log_shift: tuple = ()
     law_rms: float = 0.0
+    law: object = None
 
     def as_dict(self):
         out = super().as_dict()
         out.update(temperatures=list(self.temperatures), log_shift=list(self.log_shift),
-                   law_log_shift=list(self.law_log_shift), law_rms=self.law_rms)
+                   law_log_shift=list(self.law_log_shift), law_rms=self.law_rms,
+                   law={"name": type(self.law).__name__, **vars(self.law)} if self.law is not None else None)
         return out
 
 
@@ -222,5 +226,5 @@ def fit_master_curve(frequencies, temperatures, storage, loss, *, reference_temp
     report = MasterCurveReport(**{f: getattr(rep, f) for f in FitReport.__dataclass_fields__},
                                temperatures=tuple(temps.tolist()), log_shift=tuple(log_a.tolist()),
                                law_log_shift=tuple(np.atleast_1d(law_a).tolist()),
-                               law_rms=float(np.sqrt(np.mean((log_a - law_a) ** 2))))
+                               law_rms=float(np.sqrt(np.mean((log_a - law_a) ** 2))), law=law)
     return E0, moduli, times, law, report

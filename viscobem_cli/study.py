@@ -28,7 +28,7 @@ import numpy as np
 
 from bem import statistics
 
-from . import analysis
+from . import analysis, temperatures
 from .sweep import execute, load_fields, load_point, point_key, write_atomic
 
 __all__ = ["run_scene", "write_atomic"]
@@ -119,6 +119,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     for load in scene.loads:
         for speed in (float(np.min(scene.speeds)), float(np.max(scene.speeds))):
             _check_inputs(scene.surface, scene.material, speed, load, None, scene.rtol)
+    if scene.temperatures:  # one sweep per temperature (viscobem_cli.temperatures)
+        return temperatures.run(scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)
@@ -238,6 +240,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
         from . import plots
 
         written += plots.write_all(scene, record, fields, extras, out)
+        written += temperatures.write_master_curve(scene, out)
         stages["plots"] = time.perf_counter() - t0
         stages_run.append("plots")
     if outputs["vtk"] and fields:
