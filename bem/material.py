@@ -308,6 +308,7 @@ class Material:
         if not callable(shift):
             raise InputError(f"shift must be a callable giving log10 a_T(T) (e.g. bem.temperature.WLF), "
                              f"got {shift!r}")
+        T = check_positive("T (K, absolute)", T)
         factor = 10.0 ** float(shift(T))
         if not (np.isfinite(factor) and factor > 0):
             raise InputError(f"shift factor a_T at T = {T!r} K must be finite and > 0, got {factor!r}")

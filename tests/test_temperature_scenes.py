@@ -97,11 +97,13 @@ shift = { law = "wlf", reference_temperature = 296.15 }''').replace("[290.0, 300
 
 
 def test_a_dma_table_with_temperatures_gives_a_master_curve_and_its_law(tmp_path):
-    """Noise-free sweeps: measured C1, C2 within 2e-4 relative, moduli within 1e-3 over the band."""
+    """Noise-free sweeps, 10 points over 3 decades each: measured C1, C2 within 1.0e-3 relative
+    (the overlap shifts interpolate linearly between points; bound 5e-3), moduli within 7e-4
+    over the band (bound 1e-2)."""
     m, law = _write_sweeps(tmp_path / "sweeps.csv")
     s = scenes.parse(DMA_SCENE.replace("PLOTS", "true"), base=tmp_path)
     assert isinstance(s.shift, WLF) and s.shift.reference_temperature == 296.15
-    assert s.shift.C1 == pytest.approx(8.86, rel=2e-3) and s.shift.C2 == pytest.approx(101.6, rel=2e-3)
+    assert s.shift.C1 == pytest.approx(8.86, rel=5e-3) and s.shift.C2 == pytest.approx(101.6, rel=5e-3)
     w = np.logspace(-1, 7, 50)
     np.testing.assert_allclose(s.material.complex_modulus(w), m.complex_modulus(w), rtol=1e-2)
     assert s.dma["T"].min() == pytest.approx(266.15) and s.dma["e1"].max() > 1e7  # units applied
@@ -136,3 +138,9 @@ def test_bad_dma_units_and_missing_reference_are_named(tmp_path):
         scenes.parse(text.replace('dma_temperature_unit = "C"', 'dma_temperature_unit = "F"'), base=tmp_path)
     with pytest.raises(InputError, match="reference_temperature"):
         scenes.parse(text.replace('law = "wlf", reference_temperature = 296.15', 'law = "wlf"'), base=tmp_path)
+
+
+def test_built_in_temperature_scene_parses():
+    s = scenes.load("temperature")
+    assert len(s.temperatures) == 5 and isinstance(s.shift, WLF) and s.shift.reference_temperature == 296.15
+    assert s.material.E_inf / s.material.E0 == pytest.approx(200, rel=1e-3) and s.speeds.size == 9

@@ -207,7 +207,7 @@ def plot_temperature_sweep(table, out):
         fig.colorbar(mesh, ax=ax, label="friction coefficient")
         ax.set_xlabel("log10 sliding speed (m/s)")
         ax.set_ylabel("temperature (K)")
-        ax.set_title(f"friction against speed and temperature (load {sweep['load']:g})")
+        ax.set_title(f"friction against speed and temperature (load {sweep['load']:g} N, or N/m for profiles)")
         written.append(_save(fig, out / "friction_speed_temperature.png"))
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for k in np.argsort(T):
