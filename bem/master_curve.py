@@ -156,9 +156,9 @@ def chain_shifts(segs, min_overlap=0.3, reach=3, max_mismatch=0.05, temps=None):
     for k in range(len(segs) - 1):
         d = pairwise_shift(segs[k], segs[k + 1], min_overlap)
         if d is None:
-            raise InputError(f"master curve: the sweeps at neighbouring temperatures (segments {k} and {k + 1}) "
-                             f"cannot overlap by {min_overlap:g} of their span; measure closer temperatures "
-                             "or wider frequency sweeps")
+            raise InputError(f"master curve: the sweeps at {temps[k]:g} K and {temps[k + 1]:g} K cannot overlap "
+                             f"by min_overlap = {min_overlap:g} of their span; measure closer temperatures or "
+                             "wider frequency sweeps")
         misfit = np.sqrt(_mismatch(segs[k], segs[k + 1], d, min_overlap))
         if misfit > max_mismatch:
             raise InputError(f"master curve: the sweeps at {temps[k]:g} K and {temps[k + 1]:g} K do not overlay "

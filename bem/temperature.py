@@ -129,12 +129,13 @@ def fit_wlf(temperatures, log_shift, reference_temperature, weights=None):
     slope, icpt = np.polyfit(dt[off], dt[off] / y[off], 1)
     c1 = -1.0 / slope if slope < 0 else 10.0
     c2 = icpt * -c1 if icpt * -c1 > 0 else 50.0
-    c2 = max(c2, 1.0 - dt.min())
+    c2 = max(c2, 2.0 - dt.min())
 
     def residual(p):
         return w * (-p[0] * dt / (p[1] + dt) - y)
 
-    sol = least_squares(residual, [c1, c2], bounds=([1e-6, 1e-6 - min(dt.min(), 0.0)], [np.inf, np.inf]),
+    # C2 stays 1 K beyond the coldest point, where the law has its pole
+    sol = least_squares(residual, [c1, c2], bounds=([1e-6, 1.0 - min(dt.min(), 0.0)], [np.inf, np.inf]),
                         x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14)
     return WLF(float(sol.x[0]), float(sol.x[1]), float(reference_temperature))
 
