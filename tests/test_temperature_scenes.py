@@ -53,11 +53,14 @@ def test_scene_reads_the_shift_law_and_temperatures():
     assert arr.shift == Arrhenius(1.5e5, 300.0)
 
 
-def test_friction_obeys_time_temperature_superposition(tmp_path):
+def test_friction_obeys_time_temperature_superposition(tmp_path, capsys):
     """``mu(v, 290 K) = mu(10 v, 300 K)`` and ``mu(v, 312.5 K) = mu(v / 10, 300 K)``: measured
-    agreement 4e-16 relative (solver rtol 1e-10; bound 1e-8)."""
-    s = scenes.parse(SCENE.replace("PLOTS", "true"))
-    rec = run_scene(s, tmp_path, progress=False)
+    agreement 4e-16 relative (solver rtol 1e-10; bound 1e-8). A second ``viscobem run`` in the
+    same folder resumes every point and prints the table of mu(v, T)."""
+    (tmp_path / "scene.toml").write_text(SCENE.replace("PLOTS", "true"))
+    s = scenes.load(tmp_path / "scene.toml")
+    rec = run_scene(s, tmp_path / "out", progress=False)
+    tmp_path = tmp_path / "out"
     table = rec["temperature_sweep"]
     assert table["temperature"] == [290.0, 300.0, 312.5] and table["units"]["temperature"] == "K"
     mu = np.array(table["loads"][0]["friction"])  # [temperature, speed]
@@ -71,6 +74,11 @@ def test_friction_obeys_time_temperature_superposition(tmp_path):
         assert (tmp_path / name).stat().st_size > 1000 and name in rec["files"]
     assert (tmp_path / "T_290.00K" / "results.json").is_file()
     assert rec["friction_curve_temperature"] == 300.0 and rec["all_converged"]
+    from viscobem_cli.main import main
+
+    assert main(["run", str(tmp_path.parent / "scene.toml"), "--out", str(tmp_path), "--no-progress"]) == 0
+    printed = capsys.readouterr().out
+    assert "290.00    300.00    312.50" in printed and "resumed: 9 finished point(s)" in printed
 
 
 def _write_sweeps(path, unit_c=True):

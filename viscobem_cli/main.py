@@ -39,6 +39,11 @@ def _cmd_run(args):
                        workers=args.workers)
     if record["resumed_points"]:
         print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
+    if "temperature_sweep" in record:  # a sweep per temperature: the table of mu(v, T) first
+        from .temperatures import summary
+
+        print(summary(record))
+        print(f"  at {record['friction_curve_temperature']:g} K:")
     curve = record["friction_curve"]
     print(f"  {'xi':>10} {'speed (m/s)':>12} {'friction':>10} {'s.e.':>9} {'contact':>9} {'iters':>6}")
     for i, xi in enumerate(curve["xi"]):

@@ -187,6 +187,19 @@ def run(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     return record
 
 
+def summary(record):
+    """Text table of the friction coefficient per speed (rows) and temperature (columns)."""
+    table = record["temperature_sweep"]
+    lines = []
+    for sweep in table["loads"]:
+        lines.append(f"  friction coefficient at load {sweep['load']:g} (N; N/m for profiles), by temperature (K):")
+        lines.append("  " + f"{'speed (m/s)':>12}" + "".join(f"{T:>10.2f}" for T in table["temperature"]))
+        for i, v in enumerate(sweep["speed"]):
+            cells = [sweep["friction"][k][i] for k in range(len(table["temperature"]))]
+            lines.append("  " + f"{v:12.4e}" + "".join(f"{'failed':>10}" if c is None else f"{c:10.5f}" for c in cells))
+    return "\n".join(lines)
+
+
 def plot_temperature_sweep(table, out):
     """Heat map of the friction coefficient over (log10 v, T) and curves per temperature."""
     import matplotlib
