@@ -21,6 +21,11 @@ prony12, and at every measured (T, f) of the material under its own fitted law f
 displacement of each sweep's part of the curve), plus the error of the measured shifts
 (``shifts_max``, before the law) and of the law (``log_aT_max``) in ``log10 a_T`` (decades), and
 of C1, C2. Times are wall-clock seconds in this process (one at a time).
+
+Reading the table: pyvisco shifts by ``E'`` alone, which is undetermined where ``E'`` is flat
+(the glassy plateau of the coldest sweeps), and fits its series in absolute error (moduli
+divided by the glassy modulus) on one term per decade, which leaves the small loss modulus of
+the tails almost unweighted.
 """
 import argparse
 import contextlib
@@ -236,8 +241,9 @@ def run(quick=False, out_dir=None, seeds=None, echo=print):
         out = Path(out_dir)
         out.mkdir(parents=True, exist_ok=True)
         (out / "materials.json").write_text(json.dumps(result, indent=1))
-        (out / "materials.md").write_text("# Prony fits and master curves: viscobem and pyvisco\n\n"
-                                          + _table(result, markdown=True) + "\n")
+        about = __doc__.split("\n\n", 2)[2]  # the problems and methods, from this module's docstring
+        (out / "materials.md").write_text("# Prony fits and master curves: viscobem and pyvisco\n\n" + about
+                                          + "\n" + _table(result, markdown=True) + "\n")
     return result
 
 
