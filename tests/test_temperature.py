@@ -7,8 +7,10 @@ scale by ``a_T`` with one rounding each, so the bound is a few ulps of the produ
 import numpy as np
 import pytest
 from conftest import make_prony30, make_seed
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
-from bem import temperature
+from bem import Material, temperature
 from bem.errors import InputError
 from bem.temperature import GAS_CONSTANT, WLF, Arrhenius, fit_arrhenius, fit_wlf
 
@@ -107,3 +109,21 @@ def test_laws_fitted_to_their_own_values_come_back():
 def test_module_is_reachable_from_the_package():
     import bem
     assert bem.temperature is temperature and isinstance(LAWS["wlf"], bem.temperature.WLF)
+
+
+@settings(derandomize=True, max_examples=40, deadline=None)
+@given(c1=st.floats(1.0, 30.0), c2=st.floats(20.0, 300.0), dt=st.floats(-0.9, 3.0),
+       log_times=st.lists(st.floats(-6, 6), min_size=1, max_size=8, unique=True))
+def test_any_law_and_series_superpose_exactly(c1, c2, dt, log_times):
+    """Random WLF laws, temperatures from T_ref - 0.9 C2 to T_ref + 3 C2, random series: the
+    shifted material is the reference at a_T w to round-off (bound 1e-13)."""
+    times = np.sort(10.0 ** np.array(log_times))
+    assume(times.size == 1 or np.min(np.diff(np.log10(times))) >= 1e-3)
+    m = Material.from_prony(E0=1e6, moduli=np.geomspace(1e6, 1e8, times.size), times=times)
+    law = WLF(c1, c2, 300.0)
+    T = 300.0 + dt * c2
+    a = 10.0 ** law(T)
+    hot = m.at_temperature(T, law)
+    w = np.logspace(-8, 8, 65)
+    np.testing.assert_allclose(hot.complex_modulus(w), m.complex_modulus(a * w), rtol=1e-13, atol=0)
+    np.testing.assert_allclose(hot.complex_compliance(w), m.complex_compliance(a * w), rtol=1e-13, atol=0)
