@@ -31,7 +31,7 @@ from . import fft
 from .checks import check_array, check_int, check_positive, check_range
 from .errors import InputError
 
-__all__ = ["SpectralMoments", "spectral_moments", "ContactPSD", "contact_psd", "Ellipse",
+__all__ = ["SpectralMoments", "spectral_moments", "moments_from_tensor", "ContactPSD", "contact_psd", "Ellipse",
            "psd_contour", "relative_moments"]
 
 SEED_LEVEL = 0.476
@@ -76,7 +76,9 @@ class SpectralMoments:
                 "theta_max": self.theta_max}
 
 
-def _from_tensor(m20, m02, m11):
+def moments_from_tensor(m20, m02, m11):
+    """:class:`SpectralMoments` of the second-moment tensor ``[[m20, m11], [m11, m02]]``: its
+    eigenvalue ratio ``gamma = min/max`` and the direction of its largest eigenvalue."""
     half_sum, half_diff = 0.5 * (m20 + m02), 0.5 * (m20 - m02)
     radius = np.hypot(half_diff, m11)
     lo, hi = half_sum - radius, half_sum + radius
@@ -122,7 +124,7 @@ def spectral_moments(field, length):
     qx = np.where(np.arange(n)[:, None] == n // 2, 0.0, qx) if n % 2 == 0 else qx
     qy = np.where(np.arange(qy.shape[1])[None, :] == n // 2, 0.0, qy) if n % 2 == 0 else qy
     w = fft.full_spectrum_weights(f.shape) * np.abs(fq) ** 2
-    return _from_tensor(np.sum(w * qx**2), np.sum(w * qy**2), np.sum(w * qx * qy))
+    return moments_from_tensor(np.sum(w * qx**2), np.sum(w * qy**2), np.sum(w * qx * qy))
 
 
 def relative_moments(moments, reference):
@@ -141,7 +143,7 @@ def relative_moments(moments, reference):
         raise InputError("reference moments must be positive definite (a field with slopes in two directions)")
     root = vecs @ np.diag(vals ** -0.5) @ vecs.T
     r = root @ m @ root
-    rel = _from_tensor(r[0, 0], r[1, 1], r[0, 1])
+    rel = moments_from_tensor(r[0, 0], r[1, 1], r[0, 1])
     # direction in the original frame: ratio m2(theta) / m2_0(theta) is largest along it
     theta = np.linspace(0, np.pi, 721)[:-1]
     ratio = moments.m2(theta) / reference.m2(theta)

@@ -174,7 +174,9 @@ def run(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     record = {key: records[nearest][key] for key in ("title", "scene", "material", "surface", "units",
                                                      "conventions", "solver", "outputs", "friction_curve",
                                                      "curves")}
+    extra = [f"at {T:g} K: {w}" for T, r in zip(scene.temperatures, records) for w in r["warnings"][len(scene.warnings):]]
     record.update(temperature_sweep=table, friction_curve_temperature=scene.temperatures[nearest],
+                  warnings=list(scene.warnings) + extra,
                   resumed_points=sum(r["resumed_points"] for r in records),
                   all_converged=all(r["all_converged"] for r in records), complete=True,
                   stages={"total": time.perf_counter() - started})

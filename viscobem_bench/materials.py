@@ -1,6 +1,6 @@
 """Prony fits and master curves: viscobem against pyvisco on the same synthetic data.
 
-Run it with ``python -m benchmarks.materials [--quick] [--out DIR]`` (or ``viscobem bench
+Run it with ``python -m viscobem_bench.materials [--quick] [--out DIR]`` (or ``viscobem bench
 materials``). It prints a table and writes ``DIR/materials.json`` and ``.md``.
 
 Two problems, both from a known truth so that every error is exact:
@@ -248,7 +248,7 @@ def run(quick=False, out_dir=None, seeds=None, echo=print):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m benchmarks.materials", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m viscobem_bench.materials", description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="one seed (smoke test)")
     parser.add_argument("--seeds", type=int, nargs="+", help="noise seeds (default 1 2 3 4 5)")
     parser.add_argument("--out", default=None, help="directory for materials.json and .md")
