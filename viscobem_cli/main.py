@@ -131,6 +131,10 @@ def _cmd_validate(args):
     record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk,
                        progress=not args.no_progress)
     summary = record["summary"]
+    if args.sensitivity:
+        from validation.sensitivity import attach
+
+        attach(record, names, quick=args.quick, progress=not args.no_progress)
     comparison = None
     if compare_with:
         comparison = baselines.compare(record, baseline_path)
@@ -145,6 +149,10 @@ def _cmd_validate(args):
         print(f"  FAIL {k['case']}: {k['solver']} {k['metric']} at {k['label']} = {k['value']:.3g} "
               f"> {k['tolerance']:.3g} ({k['why']})")
     status = 0 if not summary["failed"] else 1
+    if args.sensitivity:
+        from validation.sensitivity import print_summary
+
+        status = print_summary(record) or status
     if comparison is not None:
         for r in comparison["regressions"]:
             print(f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
@@ -229,6 +237,9 @@ def build_parser():
     val.add_argument("--no-baseline", action="store_true", help="with --quick: do not compare with the baselines")
     val.add_argument("--update-baselines", action="store_true",
                      help="with --quick: store this run's numbers as the new baselines")
+    val.add_argument("--sensitivity", action="store_true",
+                     help="rerun each case with deliberately wrong inputs (moduli, times, speed, load) and "
+                          "report which checks catch them (report.json['sensitivity'])")
     val.set_defaults(func=_cmd_validate)
     return parser
 

@@ -201,7 +201,8 @@ def _vtk(scene, fields, out):
     from validation import vtk_io
 
     idx = sorted(fields)
-    return vtk_io.write_sweep(out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx])
+    return vtk_io.write_sweep(out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx],
+                              material=scene.material)
 
 
 def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
@@ -295,5 +296,5 @@ def _fields_of_first(scene, recs, points_dir):
         data = load_fields(points_dir, rec, scene.surface)
         if data is not None and "pressure" in data:
             fields[i] = SimpleNamespace(friction=rec["friction"], contact_fraction=rec["contact_fraction"],
-                                        approach=rec["approach"], **data)
+                                        speed=rec["speed"], load=rec["load"], approach=rec["approach"], **data)
     return fields
