@@ -51,14 +51,7 @@ KEYS = [
         "series; with a temperature column, a master curve and its shift law (see shift); relative to the "
         "scene file."),
     Key("material", "dma_frequency_unit", "string", "", "rad/s", "rad/s | Hz", "Unit of the DMA frequencies."),
-    Key("material", "dma_modulus_unit", "string", "", "Pa", "Pa | kPa | MPa | GPa", "Unit of the DMA moduli."),
-    Key("material", "dma_temperature_unit", "string", "", "K", "K | C", "Unit of the DMA temperature column."),
     Key("material", "dma_terms_per_decade", "number", "", 3.0, "> 0", "Prony terms per decade of the DMA fit."),
-    Key("material", "shift", "table", "", None,
-        "{law = 'wlf', C1, C2 (K), reference_temperature (K)} | {law = 'arrhenius', activation_energy (J/mol), "
-        "reference_temperature (K)}",
-        "Time-temperature shift law; the material is the one at reference_temperature. With a DMA table "
-        "that has a temperature column give only law and reference_temperature: the law is fitted."),
     # [surface]
     Key("surface", "kind", "string", "", None, "self_affine | sinusoid | file | sphere | cylinder",
         "Rigid surface type (required)."),
@@ -95,9 +88,6 @@ KEYS = [
         "Hertz contact radius a0 for sphere and cylinder."),
     Key("loading", "xi_time", "number", "s", "the longest creep time (1 s if elastic)", "> 0",
         "tau in xi = v tau / l."),
-    Key("loading", "temperatures", "list", "K", None, "numbers > 0 (absolute)",
-        "Sweep the speeds at each temperature (needs [material] shift): friction against speed and "
-        "temperature, a heat map and curves per temperature."),
     # [solver]
     Key("solver", "rtol", "number", "", 1e-8, "(0, 1)", "Tolerance of the contact solver."),
     Key("solver", "maxiter", "integer", "", 400, ">= 1", "Maximum active-set iterations per point."),
