@@ -71,7 +71,7 @@ class WLF:
         if np.any(dt <= -self.C2):
             raise InputError(f"WLF: temperature T must be > reference_temperature - C2 = "
                              f"{self.reference_temperature - self.C2:g} K, got {T!r}")
-        out = -self.C1 * dt / (self.C2 + dt)
+        out = self.C1 * (self.reference_temperature - _temperatures(T)) / (self.C2 + dt)  # +0.0 at T_ref
         return float(out) if out.ndim == 0 else out
 
     def shift_factor(self, T):
