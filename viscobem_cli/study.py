@@ -34,7 +34,7 @@ import numpy as np
 
 from bem.sweep import check_sweep
 
-from . import analysis, guidance, records
+from . import analysis, guidance, records, temperatures
 from .sweep import (
     STUDY_FIELDS,
     execute,
@@ -202,7 +202,7 @@ def _outputs(scene, record, recs, points_dir, out, extras, stages):
 def _plots(scene, record, fields, extras, out):
     from . import plots
 
-    return plots.write_all(scene, record, fields, extras, out)
+    return plots.write_all(scene, record, fields, extras, out) + temperatures.write_master_curve(scene, out)
 
 
 def _vtk(scene, fields, out):
@@ -221,6 +221,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     solved again.
     """
     check_sweep(scene.surface, scene.material, speeds=scene.speeds, loads=scene.loads, rtol=scene.rtol)
+    if scene.temperatures:  # one sweep per temperature (viscobem_cli.temperatures)
+        return temperatures.run(scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)
