@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import direction as sliding_direction
 from . import fft
 from .checks import check_array, check_int, check_positive
 from .contact import solve_contact
@@ -169,7 +170,7 @@ def _choose_isolated_method(surface, material, *, speed, load, rtol):
 
 
 def solve(surface, material, *, speed, load=None, approach=None, periodic=True, method="auto",
-          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, **adaptive_options):
+          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, direction=0.0, **adaptive_options):
     """Steady sliding of a rigid surface over a viscoelastic half-space.
 
     Parameters
@@ -202,12 +203,27 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     raise_on_failure : bool
         Raise :class:`bem.errors.ConvergenceError` when the tolerance is not reached
         (default). With ``False`` the result comes back with ``success=False``.
+    direction : float
+        Sliding direction (radians from ``+x`` toward ``+y``; default 0), see
+        :mod:`bem.direction`: ``speed`` is along it, ``friction`` opposes it, fields stay on the
+        surface's grid. 1-D profiles: 0 or pi only.
 
     Returns
     -------
     SlidingResult
     """
     surface, speed, load, approach, rtol = _check_inputs(surface, material, speed, load, approach, rtol)
+    # --- sliding direction (bem.direction): quarter turns solve along +x on turned heights
+    theta = sliding_direction.normalize(direction, surface.ndim)
+    turns = sliding_direction.quarter_turns(theta)
+    if turns:
+        return sliding_direction.solve_turned(
+            solve, surface, material, turns, speed=speed, load=load, approach=approach, periodic=periodic,
+            method=method, rtol=rtol, maxiter=maxiter, initial=initial, raise_on_failure=raise_on_failure,
+            **adaptive_options)
+    if turns is None:
+        sliding_direction.check_oblique(periodic, method, theta)
+    # --- end sliding direction
     if not isinstance(periodic, (bool, np.bool_)):
         raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {periodic!r}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
@@ -238,7 +254,8 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
             raise InputError(f"approach must be in (0, {limit!r}) m: at max(h) - mean(h) the cell is in full "
                              f"contact and the load is unbounded (zero-mean displacement), got {approach!r}")
     t0 = time.perf_counter()
-    op = operator_for(surface, material, speed, periodic)
+    op = (operator_for(surface, material, speed, periodic) if turns == 0  # sliding direction
+          else sliding_direction.directed_operator(surface, material, speed, theta, periodic))
     area = op.area
     sol = solve_contact(op, surface.heights, mean_pressure=None if load is None else load / area,
                         approach=approach, rtol=rtol, maxiter=maxiter, initial=initial,
@@ -247,6 +264,8 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     total = float(p.mean() * area)
     if total > 0:
         friction, friction_eq6 = (_friction_periodic if periodic else _friction_isolated)(op, surface, p, total)
+        if turns is None:  # oblique sliding direction: eq. 6 along it
+            friction_eq6 = sliding_direction.eq6(op, surface.heights, p, total)
     else:
         friction = friction_eq6 = 0.0
     result = SlidingResult(
