@@ -33,8 +33,8 @@ from .checks import check_positive
 from .errors import ConvergenceError, InputError
 from .periodic import PeriodicHalfSpace
 
-__all__ = ["normalize", "quarter_turns", "turn_surface", "turn_back", "turn_array", "DirectedPeriodicHalfSpace",
-           "directed_operator", "solve_turned", "check_oblique", "eq6"]
+__all__ = ["DirectedPeriodicHalfSpace", "directed_operator", "eq6", "normalize", "operator", "plan",
+           "quarter_turns", "solve_turned", "turn_array", "turn_back", "turn_surface"]
 
 _TOL = 1e-12  # an angle within this of a multiple of pi/2 (radians) counts as a quarter turn
 
@@ -151,18 +151,33 @@ class DirectedPeriodicHalfSpace(PeriodicHalfSpace):
         return twin
 
 
-def eq6(op, heights, pressure, total):
-    """Eq. 6 along the operator's direction, ``-(1/F_N) ∫ p dh/ds dA``: spectral derivative on
-    periodic cells (the alias mean of ``i q.d``)."""
+def eq6(op, heights, pressure, total, along_x):
+    """Eq. 6 along the operator's direction, ``-(1/F_N) ∫ p dh/ds dA``: ``along_x`` (the value
+    along x) unless ``op`` is oblique, then by the spectral derivative along ``d`` (the alias
+    mean of ``i q.d``)."""
+    if not isinstance(op, DirectedPeriodicHalfSpace):
+        return along_x
     dhds = fft.inverse(1j * op.slope_multiplier * fft.forward(heights), heights.shape)
     return float(-np.mean(pressure * dhds) * op.area / total)
 
 
-def check_oblique(periodic, method, theta):
-    """Refuse the combinations that have no oblique operator."""
-    if not periodic:
+def plan(direction, ndim, periodic):
+    """``(theta, turns)``: the direction in ``[0, 2 pi)`` and its quarter turns (``None`` when
+    oblique). Refuses the combinations that have no oblique operator."""
+    theta = normalize(direction, ndim)
+    turns = quarter_turns(theta)
+    if turns is None and not periodic:
         raise InputError(f"direction must be a multiple of pi/2 (radians) for isolated contacts (periodic=False), "
-                         f"got {theta!r}")
+                         f"got {direction!r}")
+    return theta, turns
+
+
+def operator(operator_for, surface, material, speed, periodic, theta):
+    """``operator_for(surface, material, speed, periodic)`` along ``+x`` (``theta == 0``), else
+    the cached oblique operator."""
+    if theta == 0.0:
+        return operator_for(surface, material, speed, periodic)
+    return directed_operator(surface, material, speed, theta, periodic)
 
 
 def solve_turned(solve, surface, material, turns, *, initial=None, **options):

@@ -213,17 +213,13 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     SlidingResult
     """
     surface, speed, load, approach, rtol = _check_inputs(surface, material, speed, load, approach, rtol)
-    # --- sliding direction (bem.direction): quarter turns solve along +x on turned heights
-    theta = sliding_direction.normalize(direction, surface.ndim)
-    turns = sliding_direction.quarter_turns(theta)
+    # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
+    theta, turns = sliding_direction.plan(direction, surface.ndim, periodic)
     if turns:
         return sliding_direction.solve_turned(
             solve, surface, material, turns, speed=speed, load=load, approach=approach, periodic=periodic,
             method=method, rtol=rtol, maxiter=maxiter, initial=initial, raise_on_failure=raise_on_failure,
             **adaptive_options)
-    if turns is None:
-        sliding_direction.check_oblique(periodic, method, theta)
-    # --- end sliding direction
     if not isinstance(periodic, (bool, np.bool_)):
         raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {periodic!r}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
@@ -254,8 +250,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
             raise InputError(f"approach must be in (0, {limit!r}) m: at max(h) - mean(h) the cell is in full "
                              f"contact and the load is unbounded (zero-mean displacement), got {approach!r}")
     t0 = time.perf_counter()
-    op = (operator_for(surface, material, speed, periodic) if turns == 0  # sliding direction
-          else sliding_direction.directed_operator(surface, material, speed, theta, periodic))
+    op = sliding_direction.operator(operator_for, surface, material, speed, periodic, theta)
     area = op.area
     sol = solve_contact(op, surface.heights, mean_pressure=None if load is None else load / area,
                         approach=approach, rtol=rtol, maxiter=maxiter, initial=initial,
@@ -264,8 +259,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     total = float(p.mean() * area)
     if total > 0:
         friction, friction_eq6 = (_friction_periodic if periodic else _friction_isolated)(op, surface, p, total)
-        if turns is None:  # oblique sliding direction: eq. 6 along it
-            friction_eq6 = sliding_direction.eq6(op, surface.heights, p, total)
+        friction_eq6 = sliding_direction.eq6(op, surface.heights, p, total, friction_eq6)
     else:
         friction = friction_eq6 = 0.0
     result = SlidingResult(
