@@ -146,3 +146,31 @@ def test_oblique_isolated_and_adaptive_are_refused():
         bem.solve(s, MAT, speed=0.1, load=0.1, periodic=False, direction=0.4)
     with pytest.raises(InputError, match="direction"):
         bem.solve(s, MAT, speed=0.1, load=0.1, periodic=False, method="adaptive", direction=0.4)
+
+
+def test_anisotropy_is_reported_from_the_sliding_direction(rough):
+    """Moments and the contact-PSD ellipse of a solve along +y, measured from +y, equal those of
+    the turned surface slid along +x, measured from +x (the seed's convention)."""
+    from bem import anisotropy
+
+    load = 0.05 * 1e6 * L * L
+    along_y = bem.solve(rough, MAT, speed=SPEED, load=load, direction=np.pi / 2)
+    along_x = bem.solve(_turned(rough, -1), MAT, speed=SPEED, load=load)
+    my = anisotropy.spectral_moments(along_y.displacement, L, direction=np.pi / 2)
+    mx = anisotropy.spectral_moments(along_x.displacement, L)
+    for name in ("m20", "m02", "m11", "gamma"):
+        assert getattr(my, name) == pytest.approx(getattr(mx, name), rel=1e-9, abs=1e-12 * mx.m20)
+    assert np.cos(2 * (my.theta_max - mx.theta_max)) == pytest.approx(1.0, abs=1e-9)
+    assert my.direction == np.pi / 2 and mx.direction == 0.0
+    # measured from +x instead, the moments differ (the check has teeth)
+    from_x = anisotropy.spectral_moments(along_y.displacement, L)
+    assert np.cos(2 * (from_x.theta_max - mx.theta_max)) < 0.5 and from_x.m11 * mx.m11 < 0
+    ey = anisotropy.psd_contour(anisotropy.contact_psd(along_y.pressure > 0, L, smoothing=2.0), 0.7,
+                                direction=np.pi / 2)
+    ex = anisotropy.psd_contour(anisotropy.contact_psd(along_x.pressure > 0, L, smoothing=2.0), 0.7)
+    # the contour's rays (multiples of pi / 180) map onto each other under a quarter turn
+    assert ey.stretch_x == pytest.approx(ex.stretch_x, rel=1e-9)
+    assert ey.orientation == pytest.approx(ex.orientation, abs=1e-9)
+    assert ex.stretch_x > 1.5  # stretched along the sliding direction (measured 2.3)
+    with pytest.raises(InputError, match="same sliding direction"):
+        anisotropy.relative_moments(my, mx)
