@@ -35,8 +35,15 @@ from . import fft
 from .checks import check_array, check_int, check_positive, check_range
 from .errors import InputError
 
-__all__ = ["SpectralMoments", "spectral_moments", "ContactPSD", "contact_psd", "Ellipse",
-           "psd_contour", "relative_moments"]
+__all__ = [
+    "ContactPSD",
+    "Ellipse",
+    "SpectralMoments",
+    "contact_psd",
+    "psd_contour",
+    "relative_moments",
+    "spectral_moments",
+]
 
 SEED_LEVEL = 0.476
 

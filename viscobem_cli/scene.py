@@ -17,7 +17,8 @@ Schema (SI units; unknown keys are an error that lists the valid ones)::
                               indenter centred in a domain of side length (2-D map / 1-D profile)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
-                 material's longest creep time)
+                 material's longest creep time); direction_deg (sliding direction from +x toward +y,
+                 degrees; a list sweeps it: viscobem_cli.directions)
     [solver]     rtol, maxiter, warm_start, workers (processes, default 1), chunk (speeds per
                  task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol,
                  periodic (default false for sphere and cylinder, true otherwise),
@@ -48,7 +49,7 @@ SCHEMA = {
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
                 "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
                 "realisations", "radius", "exact"},
-    "loading": {"load", "speeds", "xi", "xi_time"},
+    "loading": {"load", "speeds", "xi", "xi_time", "direction_deg"},
     "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
                "method"},
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson"},
@@ -88,6 +89,12 @@ class Scene:
     contact_level: float = 0.476
     psd_smoothing: float = 1.0
     plot_xi: float = None
+    directions: tuple = (0.0,)  # sliding directions (radians), see viscobem_cli.directions
+
+    @property
+    def direction(self):
+        """The sliding direction of a single-direction study (radians)."""
+        return self.directions[0]
 
     def __post_init__(self):
         if not self.realisations:
@@ -273,6 +280,9 @@ def parse(text, *, base=Path("."), source="<string>"):
     plot_xi = analysis.get("plot_xi")
     if plot_xi is not None and not (isinstance(plot_xi, (int, float)) and plot_xi > 0):
         raise InputError(f"[analysis] plot_xi must be a number > 0, got {plot_xi!r}")
+    from .directions import parse as parse_directions
+
+    run["directions"] = parse_directions(raw["loading"], surface, run["periodic"])
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
                  load=loads[0], speeds=speeds, xi=xi, xi_time=tau, outputs=outputs, source=source,
                  raw=raw, realisations=realisations, loads=loads, contact_level=float(level),

@@ -113,6 +113,10 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     A folder holding finished points of the same study is resumed: those points are not
     solved again.
     """
+    if len(scene.directions) > 1:  # a sweep over sliding directions: one study per direction
+        from .directions import run_sweep
+
+        return run_sweep(run_scene, scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     # the solver's own input checks, before anything in out_dir is touched
     from bem.sliding import _check_inputs
 
@@ -135,6 +139,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     settings = {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
                 "anisotropy": outputs["anisotropy"],
                 "fields": keep_fields, "chi": keep_chi}
+    if scene.direction != 0.0:  # sliding direction
+        settings["direction"] = scene.direction
     record = {
         "title": scene.title, "scene": scene.source, "viscobem_version": "0.1.0",
         "python": platform.python_version(),
@@ -152,6 +158,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
         "solver": {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
                    "workers": workers, "scheduler": scheduler},
         "outputs": dict(outputs), "stages": stages, "stages_run": stages_run, "complete": False,
+        "direction_deg": round(math.degrees(scene.direction), 9),
     }
     recs, resumed, todo_keys = {}, 0, {}
     for l, load in enumerate(scene.loads):
@@ -277,7 +284,7 @@ def _tasks(scene, material, todo, points_dir, workers, scheduler, keep_fields, k
                           "periodic": scene.periodic, "method": scene.method,
                           "warm_start": scene.warm_start, "anisotropy": scene.outputs["anisotropy"],
                           "keep_fields": keep_fields, "keep_chi": keep_chi, "out": str(points_dir),
-                          "single_thread": scheduler is None and workers > 1})
+                          "single_thread": scheduler is None and workers > 1, "direction": scene.direction})
     return tasks
 
 

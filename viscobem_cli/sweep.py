@@ -81,7 +81,7 @@ def solve_point(task, r, surface, speed, load, initial):
     try:
         res = bem.solve(surface, task["material"], speed=speed, load=load, rtol=task["rtol"],
                         maxiter=task["maxiter"], initial=initial, periodic=task.get("periodic", True),
-                        method=task.get("method", "auto"))
+                        method=task.get("method", "auto"), direction=task.get("direction", 0.0))
         message = res.message
     except ConvergenceError as err:
         res, message = None, str(err)
@@ -97,7 +97,8 @@ def solve_point(task, r, surface, speed, load, initial):
             rec[key] = getattr(res, attr)
         if task["anisotropy"] and surface.ndim == 2:
             t0 = time.perf_counter()
-            rec["moments"] = anisotropy.spectral_moments(res.displacement, surface.length).as_dict()
+            rec["moments"] = anisotropy.spectral_moments(res.displacement, surface.length,
+                                                         direction=task.get("direction", 0.0)).as_dict()
             times["anisotropy"] = time.perf_counter() - t0
     return rec, res
 
