@@ -20,7 +20,7 @@ import numpy as np
 from bem import direction as sliding_direction
 from bem.errors import InputError
 
-__all__ = ["parse", "folder_name", "run_sweep", "polar_plot"]
+__all__ = ["folder_name", "parse", "polar_plot", "run_sweep"]
 
 
 def parse(loading, surface, periodic):
@@ -31,7 +31,7 @@ def parse(loading, surface, periodic):
                              for v in values):
         raise InputError(f"[loading] direction_deg must be a finite angle in degrees or a non-empty list of "
                          f"them, got {value!r}")
-    if len(set(float(v) for v in values)) != len(values):
+    if len({float(v) for v in values}) != len(values):
         raise InputError(f"[loading] direction_deg must not repeat an angle, got {value!r}")
     out = []
     for v in values:
