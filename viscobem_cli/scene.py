@@ -15,6 +15,8 @@ Schema (SI units; unknown keys are an error that lists the valid ones)::
                  file:        path (.npy/.txt/.csv, relative to the scene file), unit
                  sphere, cylinder: radius (m), exact (default false: paraboloid); an isolated
                               indenter centred in a domain of side length (2-D map / 1-D profile)
+                 measured:    path (any instrument format), n, detrend, boundary, window, alpha,
+                              unit, scan_size, channel (viscobem_cli.measured_scene)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
                  material's longest creep time); direction_deg (sliding direction from +x toward +y,
@@ -48,14 +50,15 @@ SCHEMA = {
                  "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade"},
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
                 "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
-                "realisations", "radius", "exact"},
+                "realisations", "radius", "exact",
+                "detrend", "boundary", "window", "alpha", "scan_size", "channel"},  # kind = "measured"
     "loading": {"load", "speeds", "xi", "xi_time", "direction_deg"},
     "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
                "method"},
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson"},
     "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
-SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder")
+SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder", "measured")
 INDENTER_KINDS = ("sphere", "cylinder")  # isolated indenters: periodic = false by default
 SCENE_DIR = Path(__file__).with_name("scenes")
 DEFAULT_SCENE = SCENE_DIR / "seed.toml"
@@ -161,6 +164,10 @@ def _surface(t, base):
     kind = t.get("kind")
     if kind not in SURFACE_KINDS:
         raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)}, got {kind!r}")
+    if kind == "measured":  # a measured topography file: viscobem_cli.measured_scene
+        from . import measured_scene
+
+        return (measured_scene.surface(t, base),)
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
@@ -252,6 +259,10 @@ def parse(text, *, base=Path("."), source="<string>"):
     _check_keys(solver, "solver")
     run = _solver(solver)
     run["periodic"] = solver.get("periodic", raw["surface"].get("kind") not in INDENTER_KINDS)
+    if raw["surface"].get("kind") == "measured":  # the boundary chosen for the measured patch
+        from . import measured_scene
+
+        run["periodic"] = measured_scene.periodic(raw["surface"], solver)
     if not isinstance(run["periodic"], bool):
         raise InputError(f"[solver] periodic must be true or false, got {run['periodic']!r}")
     run["method"] = solver.get("method", "auto")

@@ -255,6 +255,10 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
                                       scene.xi[sorted(fields)])
         stages["vtk"] = time.perf_counter() - t0
         stages_run.append("vtk")
+    if scene.surface.metadata.get("kind") == "measured":  # boundary choice and PSD of the measurement
+        from .measured_scene import report
+
+        written += report(scene, record, out)
     record["files"] = written
     record["all_converged"] = bool(all(p["success"] for p in recs.values()) and len(recs) == (
         len(scene.realisations) * len(scene.loads) * scene.speeds.size))
