@@ -11,7 +11,8 @@ Two routes, both exact for the operator they stand for:
   grid points), the problem is solved along ``+x`` with the solver's fast path (the line
   preconditioner factors the creep along x-lines), and the fields are turned back. Sliding
   along ``d`` over ``h`` is sliding along ``+x`` over ``h`` turned so that ``d`` becomes ``+x``.
-- **Oblique** directions on periodic cells: the symbol becomes
+- **Oblique** directions on isolated domains: the creep kernels shift along ``d``
+  (:mod:`bem.direction_isolated`). On periodic cells the symbol becomes
   ``a_q = 2 (1 - nu**2) / |q| * J(w = -(q.d) v)``. A Nyquist mode (even side) stands for two
   aliased wavevectors ``±q_N`` along that axis; its symbol is the mean of the symbols of its
   aliases along both axes (four at the corner), which makes the operator real and reduces, at
@@ -153,22 +154,27 @@ class DirectedPeriodicHalfSpace(PeriodicHalfSpace):
 
 def eq6(op, heights, pressure, total, along_x):
     """Eq. 6 along the operator's direction, ``-(1/F_N) ∫ p dh/ds dA``: ``along_x`` (the value
-    along x) unless ``op`` is oblique, then by the spectral derivative along ``d`` (the alias
-    mean of ``i q.d``)."""
-    if not isinstance(op, DirectedPeriodicHalfSpace):
+    along x) unless ``op`` is oblique, then by the spectral derivative along ``d`` on periodic
+    cells (the alias mean of ``i q.d``) and central differences on isolated domains."""
+    direction = getattr(op, "direction", None)
+    if direction is None:
         return along_x
+    if not isinstance(op, DirectedPeriodicHalfSpace):
+        gx, gy = np.gradient(heights, op.spacing)
+        dhds = math.cos(direction) * gx + math.sin(direction) * gy
+        return float(-np.sum(pressure * dhds) * op.spacing**2 / total)
     dhds = fft.inverse(1j * op.slope_multiplier * fft.forward(heights), heights.shape)
     return float(-np.mean(pressure * dhds) * op.area / total)
 
 
-def plan(direction, ndim, periodic):
+def plan(direction, ndim, periodic=True, method="auto"):
     """``(theta, turns)``: the direction in ``[0, 2 pi)`` and its quarter turns (``None`` when
-    oblique). Refuses the combinations that have no oblique operator."""
+    oblique). Refuses the combinations that have no oblique operator (the adaptive mesh)."""
     theta = normalize(direction, ndim)
     turns = quarter_turns(theta)
-    if turns is None and not periodic:
-        raise InputError(f"direction must be a multiple of pi/2 (radians) for isolated contacts (periodic=False), "
-                         f"got {direction!r}")
+    if turns is None and not periodic and method == "adaptive":
+        raise InputError(f"direction must be a multiple of pi/2 (radians) with method='adaptive' (its mesh "
+                         f"kernels shift along x only; use method='uniform' for oblique directions), got {direction!r}")
     return theta, turns
 
 
@@ -207,7 +213,12 @@ def directed_operator(surface, material, speed, direction, periodic=True):
     key = (surface.shape, surface.length, id(material), bool(periodic), float(speed), float(direction))
     op = _CACHE.get(key)
     if op is None or op.material is not material:
-        op = DirectedPeriodicHalfSpace(surface.shape, surface.length, material, speed, direction)
+        if periodic:
+            op = DirectedPeriodicHalfSpace(surface.shape, surface.length, material, speed, direction)
+        else:
+            from .direction_isolated import DirectedIsolatedHalfSpace
+
+            op = DirectedIsolatedHalfSpace(surface.shape, surface.length, material, speed, direction)
         if len(_CACHE) >= 4:
             _CACHE.pop(next(iter(_CACHE)))
         _CACHE[key] = op

@@ -214,7 +214,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     """
     surface, speed, load, approach, rtol = _check_inputs(surface, material, speed, load, approach, rtol)
     # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
-    theta, turns = sliding_direction.plan(direction, surface.ndim, periodic)
+    theta, turns = sliding_direction.plan(direction, surface.ndim, periodic, method)
     if turns:
         return sliding_direction.solve_turned(
             solve, surface, material, turns, speed=speed, load=load, approach=approach, periodic=periodic,

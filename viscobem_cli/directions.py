@@ -1,7 +1,7 @@
 """Sliding direction in scenes: ``[loading] direction_deg`` (a number, or a list: a sweep).
 
 ``direction_deg`` is measured from ``+x`` toward ``+y`` in degrees (``bem.solve``'s
-``direction`` in radians); 1-D profiles take 0 or 180 only, isolated indenters multiples of 90.
+``direction`` in radians); 1-D profiles take 0 or 180 only, the adaptive mesh multiples of 90.
 One direction: every point of the study slides along it. A list: the study runs once per
 direction, each in its own folder ``direction_DDD.DDD/`` (its own results.json, fields and
 plots, resumable like any study), and the top-level ``results.json`` gathers
@@ -23,7 +23,7 @@ from bem.errors import InputError
 __all__ = ["folder_name", "parse", "polar_plot", "run_sweep"]
 
 
-def parse(loading, surface, periodic):
+def parse(loading, surface, periodic, method="auto"):
     """The scene's directions (radians, a tuple) from ``[loading] direction_deg``."""
     value = loading.get("direction_deg", 0.0)
     values = value if isinstance(value, list) else [value]
@@ -37,7 +37,7 @@ def parse(loading, surface, periodic):
     for v in values:
         theta = math.radians(float(v))
         try:
-            sliding_direction.plan(theta, surface.ndim, periodic)
+            sliding_direction.plan(theta, surface.ndim, periodic, method)
         except InputError as err:
             raise InputError(f"[loading] direction_deg = {v!r}: {err}") from None
         out.append(theta)

@@ -293,7 +293,7 @@ def parse(text, *, base=Path("."), source="<string>"):
         raise InputError(f"[analysis] plot_xi must be a number > 0, got {plot_xi!r}")
     from .directions import parse as parse_directions
 
-    run["directions"] = parse_directions(raw["loading"], surface, run["periodic"])
+    run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
                  load=loads[0], speeds=speeds, xi=xi, xi_time=tau, outputs=outputs, source=source,
                  raw=raw, realisations=realisations, loads=loads, contact_level=float(level),
