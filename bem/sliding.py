@@ -315,7 +315,7 @@ class FrictionCurve:
 
 
 def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
-                   progress=False, callback=None, periodic=True, method="auto"):
+                   progress=False, callback=None, periodic=True, method="auto", direction=0.0):
     """Solve at each speed; warm-start each from its neighbour (in increasing speed).
 
     Parameters
@@ -330,9 +330,10 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
         ``callback(index, speed, result_or_None, message)`` after each point, e.g. to
         write it to disk at once; a point that fails to converge is reported with
         ``None`` and the sweep goes on.
-    periodic, method
-        As in :func:`solve` (``periodic=False``: isolated contact). The warm start is
-        skipped for ``method="adaptive"`` (its mesh differs from the surface's grid).
+    periodic, method, direction
+        As in :func:`solve` (``periodic=False``: isolated contact; ``direction``: sliding
+        direction, radians from +x). The warm start is skipped for ``method="adaptive"``
+        (its mesh differs from the surface's grid).
 
     Returns
     -------
@@ -355,7 +356,7 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
         try:
             res = solve(surface, material, speed=speeds[i], load=load, rtol=rtol, maxiter=maxiter,
                         initial=previous if warm_start and method != "adaptive" else None,
-                        periodic=periodic, method=method)
+                        periodic=periodic, method=method, direction=direction)
         except ConvergenceError as err:
             res, messages[i] = None, str(err)
             log.warning("%s", err)

@@ -232,3 +232,12 @@ def test_anisotropy_is_reported_from_the_sliding_direction(rough):
     assert ex.stretch_x > 1.5  # stretched along the sliding direction (measured 2.3)
     with pytest.raises(InputError, match="same sliding direction"):
         anisotropy.relative_moments(my, mx)
+
+
+def test_friction_curve_along_a_direction():
+    s = surfaces.self_affine(32, L, hurst=0.8, scales=4, rms_slope=0.3, seed=1, anisotropy=2.0)
+    curve = bem.friction_curve(s, MAT, speeds=[0.003, 0.03], load=0.05, direction=0.5, warm_start=False)
+    for v, mu in zip((0.003, 0.03), curve.friction):
+        assert mu == pytest.approx(bem.solve(s, MAT, speed=v, load=0.05, direction=0.5).friction, rel=1e-12)
+    assert curve.friction[0] != pytest.approx(bem.friction_curve(s, MAT, speeds=[0.003], load=0.05).friction[0],
+                                              rel=1e-3)
