@@ -24,6 +24,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from . import influence
+from .direction import unit_vector
 from .isolated import IsolatedHalfSpace
 
 __all__ = ["DirectedIsolatedHalfSpace", "oblique_kernels"]
@@ -97,7 +98,7 @@ def oblique_kernels(n, width, direction, shifts, weights, *, nodes=8, near=2.0):
     """
     shifts = np.asarray(shifts, dtype=float)
     weights = np.asarray(weights, dtype=float)
-    c, s = np.cos(direction), np.sin(direction)
+    c, s = unit_vector(direction)
     off = width * np.arange(-(n - 1), n)
     gx, gy = np.meshgrid(off, off, indexing="ij")
     x, y = gx.ravel(), gy.ravel()

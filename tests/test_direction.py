@@ -56,6 +56,17 @@ def test_periodic_oblique_operator_at_90_degrees_matches_the_turn(rough):
     assert np.abs(sol.pressure - ref.pressure).max() < 1e-6 * ref.pressure.max()
 
 
+def test_oblique_is_continuous_at_a_lattice_direction(rough):
+    """The oblique operator at 1e-6 rad from +x against the x-operator: a change linear in the
+    angle while v lambda theta / L << 1 (measured 2.1e-7 in friction, 3.1e-7 in eq. 6)."""
+    load = 0.05 * 1e6 * L * L
+    ref = bem.solve(rough, MAT, speed=SPEED, load=load)
+    near = bem.solve(rough, MAT, speed=SPEED, load=load, direction=1e-6)
+    assert near.friction == pytest.approx(ref.friction, rel=2e-6)
+    assert near.friction_eq6 == pytest.approx(ref.friction_eq6, rel=2e-6)
+    assert near.contact_fraction == ref.contact_fraction
+
+
 def test_direction_is_periodic_in_2pi_and_reversal_is_a_half_turn(rough):
     load = 0.05 * 1e6 * L * L
     theta = 0.3
