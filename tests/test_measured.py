@@ -151,3 +151,19 @@ def test_measured_sphere_solved_isolated_matches_the_synthetic_one(tmp_path):
     assert a.friction == pytest.approx(b.friction, rel=1e-7)  # measured 2e-10 (solver tolerance)
     assert a.contact_fraction == b.contact_fraction
     assert s.metadata["measured"]["boundary"] == "isolated" and s.centered
+
+
+def test_line_scan_becomes_a_profile(tmp_path):
+    h = np.random.default_rng(1).normal(size=200)  # micrometres over 100 um
+    st.UniformLineScan(h, 100.0, unit="um", info={}).to_netcdf(str(tmp_path / "line.nc"))
+    m = measured.read_topography(tmp_path / "line.nc")
+    np.testing.assert_allclose(m.heights, h * 1e-6, rtol=1e-12)
+    assert m.physical_sizes == pytest.approx((1e-4,))
+    m = measured.detrend(m, "plane")
+    assert abs(np.polyfit(np.arange(200), m.heights, 1)[0]) < 1e-20
+    s = measured_grid.to_surface(m, 64, boundary="periodic", window="hann")
+    assert s.shape == (64,) and s.length == pytest.approx(1e-4)
+    rep = measured_grid.psd_report(m, s)
+    assert rep["q_grid_max"] == pytest.approx(np.pi * 64 / 1e-4)
+    res = bem.solve(s, bem.Material.elastic(1e7), speed=0.0, load=1.0)
+    assert res.success and 0 < res.contact_fraction < 1
