@@ -60,6 +60,8 @@ def fold_material(scene):
     # an isolated domain has no lowest frequency, so there only relaxed terms are folded.
     w_min = 2 * np.pi / s.length * moving.min() if scene.periodic and s.ndim == 1 else 0.0
     w_max = np.pi * s.n / s.length * moving.max()
+    # oblique sliding: |q.d| reaches (|cos| + |sin|) times the Nyquist wavenumber
+    w_max *= max(abs(math.cos(t)) + abs(math.sin(t)) for t in scene.directions)
     return m.folded(w_min, w_max, tol=scene.fold_tol)
 
 
