@@ -265,3 +265,13 @@ def test_friction_curve_along_a_direction():
         assert mu == pytest.approx(bem.solve(s, MAT, speed=v, load=0.05, direction=0.5).friction, rel=1e-12)
     assert curve.friction[0] != pytest.approx(bem.friction_curve(s, MAT, speeds=[0.003], load=0.05).friction[0],
                                               rel=1e-3)
+
+
+def test_adaptive_mesh_along_plus_y_is_the_turned_indenter():
+    s = _ellipsoid()
+    kw = {"speed": 0.1, "load": 0.5, "periodic": False, "method": "adaptive", "levels": 2}
+    along_y = bem.solve(s, MAT, direction=np.pi / 2, **kw)
+    along_x = bem.solve(_turned(s, -1), MAT, **kw)
+    assert along_y.friction == pytest.approx(along_x.friction, rel=1e-12)
+    np.testing.assert_allclose(along_y.pressure, np.rot90(along_x.pressure, 1), rtol=0,
+                               atol=1e-9 * along_x.pressure.max())
