@@ -152,6 +152,15 @@ class DirectedPeriodicHalfSpace(PeriodicHalfSpace):
             self.symbol = self.symbol.real
 
     @property
+    def factors_along_x(self):
+        """``False``: the creep factor acts along ``d``, so x-line preconditioners do not apply."""
+        return False
+
+    def line_preconditioner(self, contact, cache=None):
+        """``None``: the operator does not factor along x-lines (the solver's general path)."""
+        return None
+
+    @property
     def slope_multiplier(self):
         """The multiplier of the derivative along ``d`` divided by ``i`` (rad/m), half spectrum."""
         return self._qx
