@@ -44,7 +44,7 @@ from .errors import ConvergenceError, InputError
 from .periodic import PeriodicHalfSpace
 
 __all__ = ["DirectedPeriodicHalfSpace", "directed_operator", "eq6", "normalize", "operator", "plan",
-           "quarter_turns", "solve_turned", "turn_array", "turn_back", "turn_surface"]
+           "quarter_turns", "solve_turned", "turn_array", "turn_back", "turn_surface", "unit_vector"]
 
 _TOL = 1e-12  # an angle within this of a multiple of pi/2 (radians) counts as a quarter turn
 
@@ -158,7 +158,7 @@ class DirectedPeriodicHalfSpace(PeriodicHalfSpace):
 
     def line_preconditioner(self, contact, cache=None):
         """``None``: the operator does not factor along x-lines (the solver's general path)."""
-        return None
+        return
 
     @property
     def slope_multiplier(self):
