@@ -7,7 +7,9 @@ indenter slides in ``+x`` (see :mod:`bem.periodic` for the operator's convention
 from . import anisotropy, errors, persson, surfaces
 from .errors import ConvergenceError, InputError
 from .material import Material
+from .parallel import get_threads, set_threads, use_threads
 from .sliding import FrictionCurve, SlidingResult, friction_curve, solve
 
 __all__ = ["Material", "surfaces", "errors", "anisotropy", "persson", "solve", "friction_curve",
-           "SlidingResult", "FrictionCurve", "InputError", "ConvergenceError"]
+           "SlidingResult", "FrictionCurve", "InputError", "ConvergenceError",
+           "set_threads", "get_threads", "use_threads"]

@@ -40,6 +40,7 @@ __all__ = [
     "Ellipse",
     "SpectralMoments",
     "contact_psd",
+    "moments_from_tensor",
     "psd_contour",
     "relative_moments",
     "spectral_moments",
@@ -99,7 +100,9 @@ def _in_sliding_frame(m20, m02, m11, direction):
             (m02 - m20) * c * s + m11 * (c * c - s * s))
 
 
-def _from_tensor(m20, m02, m11):
+def moments_from_tensor(m20, m02, m11):
+    """:class:`SpectralMoments` of the second-moment tensor ``[[m20, m11], [m11, m02]]``: its
+    eigenvalue ratio ``gamma = min/max`` and the direction of its largest eigenvalue."""
     half_sum, half_diff = 0.5 * (m20 + m02), 0.5 * (m20 - m02)
     radius = np.hypot(half_diff, m11)
     lo, hi = half_sum - radius, half_sum + radius
@@ -149,7 +152,7 @@ def spectral_moments(field, length, *, direction=0.0):
     w = fft.full_spectrum_weights(f.shape) * np.abs(fq) ** 2
     direction = _check_direction(direction)
     tensor = _in_sliding_frame(np.sum(w * qx**2), np.sum(w * qy**2), np.sum(w * qx * qy), direction)
-    return dataclasses.replace(_from_tensor(*tensor), direction=direction)
+    return dataclasses.replace(moments_from_tensor(*tensor), direction=direction)
 
 
 def _check_direction(direction):
@@ -182,7 +185,7 @@ def relative_moments(moments, reference):
         raise InputError("reference moments must be positive definite (a field with slopes in two directions)")
     root = vecs @ np.diag(vals ** -0.5) @ vecs.T
     r = root @ m @ root
-    rel = _from_tensor(r[0, 0], r[1, 1], r[0, 1])
+    rel = moments_from_tensor(r[0, 0], r[1, 1], r[0, 1])
     # direction in the original frame: ratio m2(theta) / m2_0(theta) is largest along it
     theta = np.linspace(0, np.pi, 721)[:-1]
     ratio = moments.m2(theta) / reference.m2(theta)

@@ -27,13 +27,14 @@ import numpy as np
 
 from . import direction as sliding_direction
 from . import fft
-from .checks import check_array, check_int, check_positive
-from .contact import solve_contact
+from .checks import check_array, check_int, check_keywords, check_positive, show
+from .contact import ContactOptions, solve_contact
 from .errors import ConvergenceError, InputError
 from .isolated import IsolatedHalfSpace
 from .material import Material
 from .periodic import PeriodicHalfSpace
-from .surfaces import Surface
+from .result import SlidingResult
+from .surface import Surface
 
 __all__ = ["SlidingResult", "FrictionCurve", "solve", "friction_curve"]
 
@@ -41,61 +42,6 @@ log = logging.getLogger(__name__)
 
 _CACHE_SIZE = 4
 _operators = {}
-
-
-@dataclass(frozen=True, eq=False)
-class SlidingResult:
-    """Steady sliding contact solution (arrays shaped like the heights).
-
-    Attributes
-    ----------
-    pressure : ndarray
-        Contact pressure (Pa), >= 0.
-    displacement : ndarray
-        Normal surface displacement (m, positive into the solid). Periodic cells: zero mean
-        (the periodic half-space has no defined mean displacement; the approach carries it).
-        Isolated 2-D contacts: absolute (zero at infinity); isolated profiles: up to the
-        constant of plane strain (see :mod:`bem.isolated`).
-    gap : ndarray
-        ``displacement - (h - max(h) + approach)`` (m), >= 0, zero in contact.
-    approach : float
-        Rigid approach from first touch (m): relative to the mean plane of the deformed
-        surface on periodic cells, to the undeformed surface far away for isolated 2-D
-        contacts, and with the displacement's constant for isolated profiles.
-    contact_fraction : float
-        Fraction of the cell (isolated contacts: of the domain) in contact (``pressure > 0``).
-    friction, friction_eq6 : float
-        Viscoelastic friction coefficient, dissipation form and eq. 6 (see module doc).
-    dissipated_power : float
-        ``friction * load * speed`` (W; W/m for profiles).
-    load, speed : float
-        Normal force (N; N/m for profiles) and sliding speed (m/s).
-    iterations, matvecs : int
-        Active-set iterations and operator applications (FFT pairs).
-    residual : float
-        Complementarity residual reached (see :mod:`bem.contact`).
-    success : bool
-    message : str
-    wall_time : float
-        Seconds spent in the solve.
-    """
-
-    pressure: np.ndarray
-    displacement: np.ndarray
-    gap: np.ndarray
-    approach: float
-    contact_fraction: float
-    friction: float
-    friction_eq6: float
-    dissipated_power: float
-    load: float
-    speed: float
-    iterations: int
-    matvecs: int
-    residual: float
-    success: bool
-    message: str
-    wall_time: float = 0.0
 
 
 def _as_surface(surface):
@@ -125,7 +71,16 @@ def operator_for(surface, material, speed, periodic=True):
     return op
 
 
-def _check_inputs(surface, material, speed, load, approach, rtol):
+def clear_operator_cache():
+    """Forget the response operators :func:`operator_for` keeps (the last few grids, materials and
+    speeds), e.g. to time an operator's construction or to free its memory."""
+    _operators.clear()
+
+
+def check_inputs(surface, material, speed, load, approach, rtol):
+    """Validate the arguments :func:`solve` shares with every caller that plans solves ahead
+    (e.g. a study checking its range before it writes anything); return them converted,
+    ``(surface, speed, load, approach, rtol)``. Raises :class:`~bem.errors.InputError`."""
     surface = _as_surface(surface)
     if not isinstance(material, Material):
         raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
@@ -139,19 +94,23 @@ def _check_inputs(surface, material, speed, load, approach, rtol):
         approach = check_positive("approach", approach)
     rtol = check_positive("rtol", rtol)
     if rtol >= 1:
-        raise InputError(f"rtol must be in (0, 1), got {rtol!r}")
+        raise InputError(f"rtol must be in (0, 1), got {show(rtol)}")
     return surface, speed, load, approach, rtol
 
 
 _ISOLATED_METHODS = ("auto", "uniform", "adaptive")
+# keywords of bem.adaptive.solve_adaptive that solve() passes on with method="adaptive"
+ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling", "height", "max_elements")
+_SOLVE_KEYWORDS = ("speed", "load", "approach", "periodic", "method", "rtol", "maxiter", "initial",
+                   "raise_on_failure", "contact_options", "direction")
 _PERIODIC_METHODS = ("auto", "active-set")
 
 
 def _choose_isolated_method(surface, material, *, speed, load, rtol):
     """The isolated-contact method that ``method="auto"`` selects: ``"uniform"`` or ``"adaptive"``.
 
-    Always the uniform DC-FFT grid, the faster one in ``benchmarks/isolated.py`` (tables:
-    ``benchmarks/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
+    Always the uniform DC-FFT grid, the faster one in ``viscobem_bench/isolated.py`` (tables:
+    ``viscobem_bench/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
     dates and machine load, 2 shared cores at load 6-8, bem/ frozen for each run; figures
     ``isolated_pareto*.png``). Problems: rolling cylinder vs Hunter and sliding sphere vs a
     Richardson-extrapolated reference, each at ``V lambda / a0 = 0.3, 1, 5``, plus the sphere
@@ -170,7 +129,8 @@ def _choose_isolated_method(surface, material, *, speed, load, rtol):
 
 
 def solve(surface, material, *, speed, load=None, approach=None, periodic=True, method="auto",
-          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, direction=0.0, **adaptive_options):
+          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, contact_options=None,
+          direction=0.0, **adaptive_options):
     """Steady sliding of a rigid surface over a viscoelastic half-space.
 
     Parameters
@@ -203,6 +163,8 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     raise_on_failure : bool
         Raise :class:`bem.errors.ConvergenceError` when the tolerance is not reached
         (default). With ``False`` the result comes back with ``success=False``.
+    contact_options : bem.contact.ContactOptions, optional
+        Tunables of the contact solver (uniform grids); default ``ContactOptions()``.
     direction : float
         Sliding direction (radians from ``+x`` toward ``+y``; default 0), see
         :mod:`bem.direction`: ``speed`` is along it, ``friction`` opposes it, fields stay on the
@@ -211,31 +173,54 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     Returns
     -------
     SlidingResult
+
+    Raises
+    ------
+    bem.errors.InputError
+        For an argument out of range, a string where a number is meant, or an unknown
+        keyword (named, with the closest valid one).
+
+    Examples
+    --------
+    A rigid sinusoid (amplitude 1 µm, wavelength 1 mm) pressed with 1 N on a 1 mm cell of
+    an elastic half-space:
+
+    >>> import bem
+    >>> s = bem.surfaces.sinusoid(64, 1e-3, amplitude=1e-6)
+    >>> r = bem.solve(s, bem.Material.elastic(1e7), speed=0.0, load=1.0)
+    >>> r.success, round(r.friction, 12)
+    (True, 0.0)
+    >>> bem.solve(s, bem.Material.elastic(1e7), speed=0.0, lod=1.0)
+    Traceback (most recent call last):
+    ...
+    bem.errors.InputError: solve() got unknown keyword argument 'lod' (did you mean 'load'?); valid: ...
     """
-    surface, speed, load, approach, rtol = _check_inputs(surface, material, speed, load, approach, rtol)
+    check_keywords("solve", adaptive_options, ADAPTIVE_OPTIONS + _SOLVE_KEYWORDS)
+    surface, speed, load, approach, rtol = check_inputs(surface, material, speed, load, approach, rtol)
     # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
     theta, turns = sliding_direction.plan(direction, surface.ndim, periodic, method)
     if turns:
         return sliding_direction.solve_turned(
             solve, surface, material, turns, speed=speed, load=load, approach=approach, periodic=periodic,
             method=method, rtol=rtol, maxiter=maxiter, initial=initial, raise_on_failure=raise_on_failure,
-            **adaptive_options)
+            contact_options=contact_options, **adaptive_options)
     if not isinstance(periodic, (bool, np.bool_)):
-        raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {periodic!r}")
+        raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {show(periodic)}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
     if method not in methods:
         raise InputError(f"method must be one of {', '.join(repr(m) for m in methods)} for "
-                         f"periodic={bool(periodic)}, got {method!r}")
+                         f"periodic={bool(periodic)}, got {show(method)}")
     if adaptive_options and method != "adaptive":
-        raise InputError(f"unexpected keyword(s) {sorted(adaptive_options)}: only method='adaptive' "
-                         f"takes extra options")
+        names = ", ".join(repr(k) for k in sorted(adaptive_options))
+        raise InputError(f"{names} {'is an option' if len(adaptive_options) == 1 else 'are options'} of "
+                         f"method='adaptive' (isolated contacts) only, got method={method!r}")
     if not periodic and method == "auto":
         method = _choose_isolated_method(surface, material, speed=speed, load=load, rtol=rtol)
     if method == "adaptive":
         if load is None:
             raise InputError("approach (displacement control) is not available with method='adaptive'; "
                              "give load (N, or N/m for profiles)")
-        from .adaptive import solve_adaptive
+        from .adaptive.solver import solve_adaptive
 
         return solve_adaptive(surface, material, speed=speed, load=load, rtol=rtol, maxiter=maxiter,
                               raise_on_failure=raise_on_failure, **adaptive_options)
@@ -247,14 +232,14 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     if approach is not None and periodic:
         limit = float(surface.heights.max() - surface.heights.mean())
         if not approach < limit:
-            raise InputError(f"approach must be in (0, {limit!r}) m: at max(h) - mean(h) the cell is in full "
-                             f"contact and the load is unbounded (zero-mean displacement), got {approach!r}")
+            raise InputError(f"approach must be in (0, {show(limit)}) m: at max(h) - mean(h) the cell is in full "
+                             f"contact and the load is unbounded (zero-mean displacement), got {show(approach)}")
     t0 = time.perf_counter()
     op = sliding_direction.operator(operator_for, surface, material, speed, periodic, theta)
     area = op.area
     sol = solve_contact(op, surface.heights, mean_pressure=None if load is None else load / area,
                         approach=approach, rtol=rtol, maxiter=maxiter, initial=initial,
-                        raise_on_failure=False)
+                        raise_on_failure=False, options=contact_options or ContactOptions())
     p = sol.pressure
     total = float(p.mean() * area)
     if total > 0:
@@ -271,7 +256,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
         wall_time=time.perf_counter() - t0)
     log.info("speed %.3e m/s: %s", speed, sol.message)
     if not sol.success and raise_on_failure:
-        raise ConvergenceError(f"speed {speed!r} m/s: {sol.message}", result)
+        raise ConvergenceError(f"speed {show(speed)} m/s: {sol.message}", result)
     return result
 
 
@@ -313,6 +298,14 @@ class FrictionCurve:
     def all_converged(self):
         return bool(np.all(self.success))
 
+    def __repr__(self):
+        """One line: the speed range, how many points converged and the friction's range."""
+        ok = np.asarray(self.success, dtype=bool)
+        mu = np.asarray(self.friction, dtype=float)[ok]
+        span = f", friction {mu.min():.6g}..{mu.max():.6g}" if mu.size else ""
+        return (f"FrictionCurve({self.speeds.size} speeds {self.speeds.min():.6g}..{self.speeds.max():.6g} m/s, "
+                f"{int(ok.sum())} converged{span})")
+
 
 def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
                    progress=False, callback=None, periodic=True, method="auto", direction=0.0):
@@ -342,10 +335,10 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
     try:
         speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
     except (TypeError, ValueError):
-        raise InputError(f"speeds must be a list of numbers (m/s), got {speeds!r}") from None
+        raise InputError(f"speeds must be a list of numbers (m/s), got {show(speeds)}") from None
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {speeds!r}")
-    surface, _, load, _, rtol = _check_inputs(surface, material, 0.0, load, None, rtol)
+        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {show(speeds)}")
+    surface, _, load, _, rtol = check_inputs(surface, material, 0.0, load, None, rtol)
     from tqdm.auto import tqdm
 
     n = speeds.size

@@ -147,7 +147,7 @@ def test_self_influence_is_the_diagonal(shape):
 @pytest.mark.parametrize("shape", SHAPES)
 @pytest.mark.parametrize("xi", [0.0, 1.0])
 def test_single_precision_twin_is_the_same_operator_in_float32(shape, xi):
-    """The products the inner solves use (bem.contact.SINGLE_PRECISION_INNER): float32
+    """The products the inner solves use (``bem.contact.ContactOptions.single_precision``): float32
     fields, within float32 round-off of the float64 products. Measured 2e-7 to 3.4e-7 of the
     largest value here (8e-7 at 1024²; float32's epsilon is 1.2e-7), so the bound is 1e-6.
     The inverse (full-contact) product amplifies that by the symbol's spread: 6e-7 for the

@@ -2,8 +2,12 @@
 ``pip install .`` (not editable), so a package or data file missing from pyproject.toml only
 fails there. Checked here against the source tree."""
 import fnmatch
-import tomllib
 from pathlib import Path
+
+try:
+    import tomllib
+except ImportError:  # Python 3.10
+    import tomli as tomllib
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIG = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]

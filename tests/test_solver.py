@@ -213,8 +213,7 @@ def test_friction_forms_converge_together_on_a_rough_profile():
 # ------------------------------------------------------------ contracts
 @pytest.fixture(scope="module")
 def hard():
-    """64**2 rough surface, 30-term material (E_inf/E0 = 100) at mid speed, 25 % contact
-    (E_inf/E0 = 1e4 does not converge there: see the xfail above)."""
+    """64**2 rough surface, 30-term material (E_inf/E0 = 100) at mid speed, 25 % contact."""
     s, m, v = _rough(64, 2, seed=4), make_prony30(100.0), 1e-2 * L / 1.0
     return s, m, v, _load(s, np.abs(m.complex_modulus(8 * 2 * np.pi / L * v)), frac=0.1)
 

@@ -44,7 +44,7 @@ def _moments(d):
 
 def _tensor_mean(ms):
     m20, m02, m11 = (float(np.mean([getattr(m, k) for m in ms])) for k in ("m20", "m02", "m11"))
-    return anisotropy._from_tensor(m20, m02, m11)
+    return anisotropy.moments_from_tensor(m20, m02, m11)
 
 
 def anisotropy_summary(scene, recs, l):

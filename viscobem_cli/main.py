@@ -5,7 +5,7 @@
                                               NAME: a built-in scene, e.g. seed_figures);
                                               rerun on the same DIR to resume a sweep
     viscobem bench [--quick] --out DIR        run time against error of every solver, scaling,
-                                              skipping; regenerates README's bench table
+                                              skipping (writes only in DIR)
     viscobem bench periodic|fem|isolated [--quick] --out DIR   one solver's detailed benchmark
     viscobem bench rubber_speeds [--quick] --out DIR   the periodic benchmark's rubber over speed
     viscobem scene                            print the built-in default scene
@@ -59,23 +59,26 @@ def _cmd_scene(args):
     return 0
 
 
+def run_scene_text(text, out):
+    """Run the study of a scene given as TOML text into ``out``; its record (for the benchmarks)."""
+    from . import scene as scenes
+    from .study import run_scene
+
+    return run_scene(scenes.parse(text), out, progress=False)
+
+
 def _cmd_bench(args):
     import importlib
-    from pathlib import Path
 
     if args.name != "all":
-        module = importlib.import_module(f"benchmarks.{args.name}")
+        module = importlib.import_module(f"viscobem_bench.{args.name}")
         module.run(quick=args.quick, out_dir=args.out)
         return 0
-    from benchmarks import suite
+    from viscobem_bench import suite
 
-    readme = None
-    if not args.no_readme:
-        readme = Path(args.readme) if args.readme else Path(suite.__file__).resolve().parents[1] / "README.md"
-        if not readme.is_file():
-            print(f"viscobem bench: no README at {readme}; the table is only in {args.out}/bench.md")
-            readme = None
-    suite.run(quick=args.quick, out_dir=args.out, readme=readme)
+    from .scene import DEFAULT_SCENE
+
+    suite.run(quick=args.quick, out_dir=args.out, study=(run_scene_text, DEFAULT_SCENE.read_text()))
     return 0
 
 
@@ -149,9 +152,6 @@ def build_parser():
     bench = sub.add_parser("bench", help="run a benchmark")
     bench.add_argument("name", nargs="?", default="all", choices=["all", "periodic", "fem", "isolated", "rubber_speeds"],
                        help="all (default: every solver, scaling, skipping) or one detailed benchmark")
-    bench.add_argument("--readme", default=None, help="README whose bench table to regenerate "
-                       "(default: the project's README.md)")
-    bench.add_argument("--no-readme", action="store_true", help="leave the README alone")
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)

@@ -119,7 +119,7 @@ def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0):
 
 def polar_m2(scene, record, l, i, path):
     """m2(theta) of the deformed surface (ensemble tensor) at xi_i and at the lowest xi."""
-    from bem.anisotropy import _from_tensor
+    from bem.anisotropy import moments_from_tensor
 
     plt = _pyplot()
     pts = [p for p in record["points"] if p["l"] == l and p.get("moments")]
@@ -131,7 +131,7 @@ def polar_m2(scene, record, l, i, path):
         ms = [p["moments"] for p in pts if p["i"] == idx]
         if not ms:
             continue
-        m = _from_tensor(*(np.mean([d[k] for d in ms]) for k in ("m20", "m02", "m11")))
+        m = moments_from_tensor(*(np.mean([d[k] for d in ms]) for k in ("m20", "m02", "m11")))
         r = m.m2(theta) / m.m2_max
         ax.plot(theta, r, style, label=rf"$\xi$ = {scene.xi[idx]:.3g} {name}: $\gamma$ = {m.gamma:.3f}, "
                                       rf"$\Theta$ = {np.degrees(m.theta_max):.0f}°")

@@ -120,11 +120,11 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
 
         return run_sweep(run_scene, scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     # the solver's own input checks, before anything in out_dir is touched
-    from bem.sliding import _check_inputs
+    from bem.sliding import check_inputs
 
     for load in scene.loads:
         for speed in (float(np.min(scene.speeds)), float(np.max(scene.speeds))):
-            _check_inputs(scene.surface, scene.material, speed, load, None, scene.rtol)
+            check_inputs(scene.surface, scene.material, speed, load, None, scene.rtol)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)

@@ -114,9 +114,7 @@ def run_chunk(task, callback=None):
     for pool workers sharing the cores).
     """
     if task.get("single_thread"):
-        from bem import fft
-
-        fft.WORKERS = 1
+        bem.set_threads(1)
     out = Path(task["out"])
     previous = [None] * len(task["surfaces"])
     records = []
@@ -180,9 +178,7 @@ def load_fields(folder, rec, surface):
 
 
 def _pool_init():
-    from bem import fft
-
-    fft.WORKERS = 1
+    bem.set_threads(1)
     try:
         from threadpoolctl import threadpool_limits
 
