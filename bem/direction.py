@@ -39,15 +39,13 @@ import math
 import numpy as np
 
 from . import fft
+from .angles import quarter_turns, unit_vector
 from .checks import check_positive
 from .errors import ConvergenceError, InputError
 from .periodic import PeriodicHalfSpace
 
 __all__ = ["DirectedPeriodicHalfSpace", "directed_operator", "eq6", "normalize", "operator", "plan",
            "quarter_turns", "solve_turned", "turn_array", "turn_back", "turn_surface", "unit_vector"]
-
-_TOL = 1e-12  # an angle within this of a multiple of pi/2 (radians) counts as a quarter turn
-
 
 def normalize(direction, ndim):
     """``direction`` (radians) reduced to ``[0, 2 pi)``; profiles accept only ``0`` and ``pi``."""
@@ -63,22 +61,6 @@ def normalize(direction, ndim):
         raise InputError(f"direction must be 0 or pi (radians) for a 1-D profile (it slides along its own "
                          f"axis), got {direction!r}")
     return 0.0 if k == 0 else (k * math.pi / 2 if k is not None else theta)
-
-
-def quarter_turns(theta):
-    """``k`` in ``0..3`` if ``theta`` is ``k pi/2`` (mod ``2 pi``, within 1e-12 rad), else ``None``."""
-    r = (theta % (2 * math.pi)) / (math.pi / 2)
-    k = round(r)
-    return k % 4 if abs(r - k) * (math.pi / 2) < _TOL else None
-
-
-def unit_vector(theta):
-    """``(cos theta, sin theta)``, exactly ``0`` and ``±1`` at quarter turns (``cos(pi/2)`` is
-    6e-17 in floating point, and a creep time of 1e9 s would see that component)."""
-    k = quarter_turns(theta)
-    if k is not None:
-        return ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[k]
-    return math.cos(theta), math.sin(theta)
 
 
 def _turn(field, k):

@@ -24,7 +24,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from . import influence
-from .direction import unit_vector
+from .angles import unit_vector
 from .isolated import IsolatedHalfSpace
 
 __all__ = ["DirectedIsolatedHalfSpace", "oblique_kernels"]
