@@ -25,7 +25,6 @@ quadrature along ``x`` at the shifted (off-grid) points, see :func:`square_creep
 import numpy as np
 from scipy import special
 from scipy.linalg import eigh_tridiagonal
-from scipy.signal import lfilter
 
 __all__ = ["strip_elastic", "strip_creep", "square_elastic", "square_creep", "square_creep_sum", "love_corner",
            "log_antiderivative"]
@@ -241,6 +240,8 @@ def _sweep(seg, s, yy, width, shift, first_row):
     r = np.exp(-h / shift)
     out = np.empty((s.size, yy.size))
     out[-1] = tail
+    from scipy.signal import lfilter  # imported here: scipy.signal is slow to import
+
     out[-2::-1] = lfilter([1.0], [1.0, -r], seg[::-1], axis=0, zi=(r * tail)[None, :])[0]
     return out
 

@@ -1,4 +1,4 @@
-"""Public entry points: one steady sliding solve and a sweep over speeds.
+"""Public entry point: one steady sliding solve (sweeps over speeds: :mod:`bem.sweep`).
 
 Units SI. Load is the total normal force on the cell (N) for 2-D surfaces and the force
 per unit length (N/m) for 1-D profiles. The indenter slides at ``speed`` (m/s) in ``+x``.
@@ -21,7 +21,7 @@ the pressure vanishes).
 """
 import logging
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -36,7 +36,7 @@ from .periodic import PeriodicHalfSpace
 from .result import SlidingResult
 from .surface import Surface
 
-__all__ = ["SlidingResult", "FrictionCurve", "solve", "friction_curve"]
+__all__ = ["SlidingResult", "solve"]
 
 log = logging.getLogger(__name__)
 
@@ -273,98 +273,3 @@ def _friction_isolated(op, surface, p, total):
     friction = op.dissipation_integral(p) / total
     dhdx = np.gradient(surface.heights, op.spacing, axis=0)
     return friction, float(-np.sum(p * dhdx) * op.spacing ** surface.ndim / total)
-
-
-@dataclass(frozen=True, eq=False)
-class FrictionCurve:
-    """A sweep over speeds (arrays in the order of ``speeds``; failed points are NaN).
-
-    ``results[i]`` is the :class:`SlidingResult` of ``speeds[i]`` or ``None`` if it failed;
-    ``messages[i]`` says why.
-    """
-
-    speeds: np.ndarray
-    friction: np.ndarray
-    friction_eq6: np.ndarray
-    contact_fraction: np.ndarray
-    dissipated_power: np.ndarray
-    iterations: np.ndarray
-    residual: np.ndarray
-    success: np.ndarray
-    messages: list
-    results: list = field(repr=False)
-
-    @property
-    def all_converged(self):
-        return bool(np.all(self.success))
-
-    def __repr__(self):
-        """One line: the speed range, how many points converged and the friction's range."""
-        ok = np.asarray(self.success, dtype=bool)
-        mu = np.asarray(self.friction, dtype=float)[ok]
-        span = f", friction {mu.min():.6g}..{mu.max():.6g}" if mu.size else ""
-        return (f"FrictionCurve({self.speeds.size} speeds {self.speeds.min():.6g}..{self.speeds.max():.6g} m/s, "
-                f"{int(ok.sum())} converged{span})")
-
-
-def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
-                   progress=False, callback=None, periodic=True, method="auto", direction=0.0):
-    """Solve at each speed; warm-start each from its neighbour (in increasing speed).
-
-    Parameters
-    ----------
-    speeds : array_like
-        Sliding speeds (m/s), >= 0.
-    load : float
-        Normal force (N; N/m for profiles).
-    progress : bool
-        Show a progress bar (tqdm).
-    callback : callable, optional
-        ``callback(index, speed, result_or_None, message)`` after each point, e.g. to
-        write it to disk at once; a point that fails to converge is reported with
-        ``None`` and the sweep goes on.
-    periodic, method, direction
-        As in :func:`solve` (``periodic=False``: isolated contact; ``direction``: sliding
-        direction, radians from +x). The warm start is skipped for ``method="adaptive"``
-        (its mesh differs from the surface's grid).
-
-    Returns
-    -------
-    FrictionCurve
-    """
-    try:
-        speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
-    except (TypeError, ValueError):
-        raise InputError(f"speeds must be a list of numbers (m/s), got {show(speeds)}") from None
-    if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {show(speeds)}")
-    surface, _, load, _, rtol = check_inputs(surface, material, 0.0, load, None, rtol)
-    from tqdm.auto import tqdm
-
-    n = speeds.size
-    results, messages = [None] * n, [""] * n
-    previous = None
-    for i in tqdm(np.argsort(speeds, kind="stable"), total=n, disable=not progress,
-                  desc="friction curve", unit="speed"):
-        try:
-            res = solve(surface, material, speed=speeds[i], load=load, rtol=rtol, maxiter=maxiter,
-                        initial=previous if warm_start and method != "adaptive" else None,
-                        periodic=periodic, method=method, direction=direction)
-        except ConvergenceError as err:
-            res, messages[i] = None, str(err)
-            log.warning("%s", err)
-        else:
-            messages[i] = res.message
-            previous = res.pressure
-        results[i] = res
-        if callback is not None:
-            callback(int(i), float(speeds[i]), res, messages[i])
-
-    def column(attr, dtype=float):
-        return np.array([getattr(r, attr) if r is not None else np.nan for r in results], dtype=dtype)
-
-    return FrictionCurve(speeds=speeds, friction=column("friction"), friction_eq6=column("friction_eq6"),
-                         contact_fraction=column("contact_fraction"),
-                         dissipated_power=column("dissipated_power"), iterations=column("iterations"),
-                         residual=column("residual"), success=np.array([r is not None for r in results]),
-                         messages=messages, results=results)

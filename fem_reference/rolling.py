@@ -57,7 +57,8 @@ class RollingResult:
         vs 4.6 % at ``V lambda = 100 a0``, where the pressure centroid moves by a
         hundredth of a node spacing).
     dissipated_power : float
-        ``mu P V`` (W/m).
+        Viscous dissipation integrated over the block (W/m), from the internal variables;
+        it matches ``friction * load * speed`` (the moment form) to the discretisation error.
     peak_pressure, load, speed, radius, approach : float
         Pa, N/m, m/s, m, m (the approach depends on the truncation depth in 2-D).
     element_size, domain_width, domain_depth, grading : float
@@ -72,7 +73,7 @@ class RollingResult:
         Wall times (s) of ``assemble_factor``, ``flexibility``, ``contact``, ``fields``.
     fields : dict
         Quadrature-point fields (only with ``keep_fields=True``): ``points``, ``strain``,
-        ``stress``, ``alpha`` (list), ``dissipation``, ``weights``, and ``u``, ``mesh``.
+        ``stress``, ``pressure``, ``alpha`` (list), ``dissipation``, ``weights``, and ``u``, ``mesh``.
     """
 
     x: np.ndarray
@@ -158,7 +159,8 @@ def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_ban
     keep_fields : bool
         Keep quadrature-point fields in ``result.fields``.
     vtk : str or path, optional
-        Write the fields to this ``.vtu`` file (meshio).
+        Write the fields to this ``.vtm`` (block and contact interface) or ``.vtu`` (block)
+        file, with the metadata (:mod:`fem_reference.vtk`).
 
     Returns
     -------
@@ -239,18 +241,18 @@ def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_ban
         x=xc, pressure=pres, displacement=w_top[cand] @ sol.lam, forces=sol.lam,
         leading_edge=lead, trailing_edge=trail,
         friction=mu, friction_dissipation=power_fields / (P * V) if V > 0 else 0.0,
-        dissipated_power=mu * P * V, peak_pressure=float(pres.max()), load=P, speed=V, radius=R,
+        dissipated_power=power_fields, peak_pressure=float(pres.max()), load=P, speed=V, radius=R,
         approach=sol.d, element_size=hs.element_size, domain_width=L, domain_depth=hs.depth, grading=ratio,
         n_elements=hs.n_elements, n_unknowns=op.n_unknowns, iterations=sol.iterations,
         residual=sol.residual, material=material,
         timings={"assemble_factor": t1 - t0, "flexibility": t2 - t1, "contact": t3 - t2, "fields": t4 - t3},
         fields=dict(mesh=hs.mesh, basis=ops.basis, u=u, points=ops.points, weights=ops.weights,
-                    strain=eps, stress=sigma, alpha=alpha, dissipation=diss) if (keep_fields or vtk) else {},
+                    strain=eps, stress=sigma, pressure=p, alpha=alpha, dissipation=diss) if (keep_fields or vtk) else {},
     )
     if vtk is not None:
         from .vtk import write_fields
 
-        write_fields(vtk, res.fields)
+        write_fields(vtk, res.fields, res)
         if not keep_fields:
             res = _drop_fields(res)
     log.info("rolling V=%g: mu=%.6g, edges [%g, %g], %d unknowns, %.1f s", V, mu, trail, lead,

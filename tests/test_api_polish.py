@@ -84,5 +84,5 @@ def test_results_print_one_short_line():
     assert repr(adaptive).startswith("AdaptiveResult(converged, shape=(32, 32),") and len(repr(adaptive)) < 300
     curve = bem.friction_curve(S, bem.Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=0.01),
                                speeds=[1e-3, 1e-2], load=0.3)
-    assert repr(curve).startswith("FrictionCurve(2 speeds 0.001..0.01 m/s, 2 converged, friction ")
+    assert repr(curve).startswith("FrictionCurve(load=0.3, 2 speeds from 0.001 to 0.01 m/s, 2 converged, peak friction ")
     assert len(repr(curve)) < 200

@@ -16,7 +16,7 @@ from validation import baselines, metrics
 from validation.cases import CASES, cylinder, periodic
 from viscobem_cli.main import main
 
-CHEAP = ["full_contact_rough", "elastic_rough_dense"]
+CHEAP = ["full_contact_rough", "elastic_rough_dense", "rubber"]
 
 
 # ------------------------------------------------------------------ metrics
@@ -145,8 +145,7 @@ def test_vti_holds_the_reported_pressure(cheap_run):
 
 def test_fem_vtu_and_pvd_of_a_rolling_sweep(tmp_path, monkeypatch):
     """One coarse speed of the rolling cylinder through the CLI: BEM .vti (periodic and isolated),
-    FEM .vtu, a .pvd per solver."""
-    import meshio
+    FEM .vtm (block and interface), a .pvd per solver."""
     import pyvista as pv
 
     cfg = dict(cylinder.QUICK_SLS[3], s=[0.3], cells=10, resolution=2)
@@ -157,10 +156,15 @@ def test_fem_vtu_and_pvd_of_a_rolling_sweep(tmp_path, monkeypatch):
     case = record["cases"]["cylinder_sls_r3"]
     assert case["status"] in ("passed", "failed")  # coarser than the quick set: plumbing only
     assert {k["solver"] for k in case["checks"]} == set(cylinder.SOLVERS)
-    vtu = meshio.read(tmp_path / "vtk" / "cylinder_sls_r3" / "fem" / "point_000.vtu")
-    assert vtu.points.shape[1] == 3 and "displacement" in vtu.point_data
-    assert {"stress", "strain", "dissipation"} <= set(vtu.cell_data)
-    assert np.all(np.asarray(vtu.cell_data["dissipation"][0]) >= -1e-9)
+    blocks = pv.read(tmp_path / "vtk" / "cylinder_sls_r3" / "fem" / "point_000.vtm")
+    vol, iface = blocks["volume"], blocks["interface"]
+    assert {"stress", "strain", "dissipation", "von_mises", "hydrostatic_pressure"} <= set(vol.cell_data.keys())
+    assert np.all(np.asarray(vol.cell_data["dissipation"]) >= -1e-9)
+    fem = next(r for r in case["runs"] if r["solver"] == "fem")
+    assert "unknowns" in fem["detail"] and "flexibility" in fem["detail"] and fem["peak_mib"] >= 0
+    assert iface.field_data["speed"][0] == pytest.approx(record["cases"]["cylinder_sls_r3"]["numbers"]["speeds"][0])
+    assert iface.field_data["load"][0] == cylinder.P and iface.field_data["radius"][0] == cylinder.R
+    assert np.all(np.asarray(iface.point_data["pressure"]) >= 0)
     for sub in cylinder.SOLVERS:
         entries = _pvd_entries(tmp_path / "vtk" / "cylinder_sls_r3" / sub / "sweep.pvd")
         assert [t for _, t in entries] == [0.3]
@@ -169,6 +173,109 @@ def test_fem_vtu_and_pvd_of_a_rolling_sweep(tmp_path, monkeypatch):
     x = np.asarray(bem.points[:, 0])
     p = np.asarray(bem.point_data["pressure"])
     assert abs(np.sum(p * x) / np.sum(p)) < 1e-3  # centred on the cylinder's axis (origin set)
+    m = cylinder.sls(3)
+    assert bem.field_data["E_inf"][0] == m.E_inf and bem.field_data["E0"][0] == pytest.approx(m.E0)
+    np.testing.assert_allclose(bem.field_data["relaxation_times"], m.relaxation_times)
+    assert bem.field_data["load"][0] == pytest.approx(cylinder.P) and "Pa" in str(bem.field_data["units"][0])
+
+
+# ------------------------------------------------------------------ checks that can fail
+def test_a_failed_fem_solve_is_a_failed_check_not_a_pass(monkeypatch):
+    """The FEM adapter passes the solver's own ``success`` on: a solve that says it failed is a
+    failed check (the adapter used to report ``success=True`` whatever the solver said)."""
+    from dataclasses import replace
+
+    import fem_reference
+    from validation.cases import solvers
+
+    real = fem_reference.rolling_cylinder
+
+    def failing(*args, **kwargs):
+        return replace(real(*args, **kwargs), success=False, message="active set did not settle")
+
+    monkeypatch.setattr(fem_reference, "rolling_cylinder", failing)
+    m = cylinder.sls(3)
+    sol = solvers.fem_cylinder(m, radius=cylinder.R, load=cylinder.P, speed=cylinder._speed(m, 3.0), resolution=1)
+    assert sol["success"] is False
+    from validation.cases.base import CaseOutput
+
+    out = CaseOutput()
+    assert not out.converged("fem", "s=3", sol)
+    assert [c.passed for c in out.checks] == [False] and "did not settle" in out.checks[0].why
+    with pytest.raises(KeyError):  # an adapter without ``success`` is an error, never a pass
+        out.converged("fem", "s=3", {"residual": 0.0, "message": ""})
+
+
+def test_fem_self_checks_catch_a_broken_energy_balance_and_contact():
+    """The energy balance compares two computed numbers, the contact residual is recomputed from
+    the field: both fail when their inputs disagree (a 5 % dissipation error, a wrong approach)."""
+    from validation.cases.base import CaseOutput
+    from validation.cases.fem_checks import CONTACT_TOL, fem_self_checks
+
+    good = dict(power_fields=1.0, power_moment=1.002, contact_residual=1e-10, linear_residual=1e-13)
+    out = CaseOutput()
+    fem_self_checks(out, "x", good, 0.01, "why")
+    assert all(c.passed for c in out.checks) and len(out.checks) == 3
+    out = CaseOutput()
+    fem_self_checks(out, "x", dict(good, power_fields=1.06, contact_residual=10 * CONTACT_TOL,
+                                   linear_residual=1e-6), 0.01, "why")
+    assert [c.passed for c in out.checks] == [False, False, False]
+
+
+def test_creep_peak_is_compared_with_the_exact_maximum_not_the_axis():
+    """At E_inf/E0 = 10 and t = 0.3 lambda the Lee-Radok pressure peaks on a ring at r/a ~ 0.9,
+    above the axis value: the case's reference is the maximum over r."""
+    from validation import lee_radok
+
+    m = cylinder.sls(10)
+    t = 0.3 * float(m.creep_times[0])
+    a = lee_radok.contact_radius(m, 0.01, 1.0, np.array([t]))[0]
+    r = np.linspace(0.0, a, 801)
+    p = lee_radok.pressure(m, 0.01, 1.0, t, r)
+    assert 0.85 < r[np.argmax(p)] / a < 0.95 and p.max() > 1.05 * p[0]
+
+
+# ------------------------------------------------------------------ sensitivity
+def test_sensitivity_table_and_exit_status(tmp_path, monkeypatch, capsys):
+    """--sensitivity reruns the cases with wrong inputs: every entry names the checks that caught it,
+    the HTML shows the table, and a perturbation no check catches (a tolerance made useless) fails
+    the run."""
+    argv = ["validate", "--quick", "--no-progress", "--no-vtk", "--no-plots", "--no-baseline", "--sensitivity",
+            "--case", "westergaard", "--case", "elastic_rough_dense", "--out", str(tmp_path / "a")]
+    assert main(argv) == 0
+    record = json.loads((tmp_path / "a" / "report.json").read_text())
+    entries = record["sensitivity"]
+    assert {e["case"] for e in entries} == {"westergaard", "elastic_rough_dense"}
+    for e in entries:
+        assert set(e) >= {"case", "solver", "perturbation", "detected", "by"}
+        # elastic and at rest: the relaxation times and the speed change nothing, everything else is caught
+        changes = not (e["perturbation"].startswith("relaxation") or e["perturbation"].startswith("speed"))
+        assert e["required"] == changes and e["detected"] == changes and bool(e["by"]) == changes
+    html = (tmp_path / "a" / "report.html").read_text()
+    assert "id='sensitivity'" in html and "caught by" in html
+    loose = dict(periodic.QUICK_WEST, tol=dict(l2=1e9, max=1e9, peak=1e9, edge=1e9))
+    monkeypatch.setattr(periodic, "QUICK_WEST", loose)
+    argv[-1] = str(tmp_path / "b")
+    capsys.readouterr()
+    assert main(argv) == 1
+    assert "UNDETECTED westergaard: bem-periodic with E_inf +2%" in capsys.readouterr().out
+
+
+def test_perturbations_change_only_what_they_name():
+    from validation.perturb import PERTURBATIONS, Tamper
+
+    m = cylinder.prony()
+    by_name = {p.name: p for p in PERTURBATIONS}
+    up = by_name["E_inf +2%"].material(m)
+    assert up.E_inf == pytest.approx(1.02 * m.E_inf) and up.E0 == m.E0
+    np.testing.assert_array_equal(up.relaxation_times, m.relaxation_times)
+    e0 = by_name["E0 -2%"].material(m)
+    assert e0.E0 == pytest.approx(0.98 * m.E0) and e0.E_inf == pytest.approx(m.E_inf)
+    np.testing.assert_allclose(by_name["relaxation times +5%"].material(m).relaxation_times,
+                               1.05 * m.relaxation_times)
+    t = Tamper(by_name["speed +5%"])
+    assert t.inputs("a", m, 0.0, 1.0) == (m, 0.0, 1.0) and t.changed == set()
+    assert t.inputs("b", m, 2.0, 1.0)[1] == pytest.approx(2.1) and t.changed == {"b"}
 
 
 # ------------------------------------------------------------------ failures and baselines
@@ -236,3 +343,14 @@ def test_quick_set_matches_the_stored_baselines(tmp_path):
     assert main(["validate", "--quick", "--no-progress", "--out", str(tmp_path)]) == 0
     record = json.loads((tmp_path / "report.json").read_text())
     assert record["baseline"]["ok"] and record["summary"]["failed"] == []
+
+
+@pytest.mark.slow
+def test_rubber_fem_against_bem():
+    """The full rubber case: every BEM solver against the isolated BEM on twice the cells at the
+    friction peak and a decade below, and the FEM against that reference on its material."""
+    out = CASES["rubber"](quick=False)
+    failed = [c.key for c in out.checks if not c.passed]
+    assert not failed, failed
+    assert {c.solver for c in out.checks} >= {"fem vs bem-reference", "bem-periodic vs bem-reference",
+                                               "bem-isolated-adaptive vs bem-reference"}

@@ -1,6 +1,6 @@
 """Study-level analysis of a finished sweep: anisotropy, contact PSD, Persson's theory.
 
-Anisotropy (SPEC §2.5). Per point the spectral moments of the deformed surface (the
+Anisotropy. Per point the spectral moments of the deformed surface (the
 displacement field ``u``, the solid's surface shape) are computed in the sweep. Here,
 for each load and speed:
 
