@@ -12,19 +12,19 @@ Layout: real FFTs (half spectrum) along the **last** axis; wavevectors in rad/m 
 :func:`wavevectors`. For even ``n`` the Nyquist mode along an axis is its own conjugate
 partner: a Fourier multiplier there must be real (see :func:`hermitian_multiplier`).
 
-Transforms use all cores through scipy's ``workers=-1``.
+Transforms use :func:`bem.parallel.get_threads` threads (every core unless set otherwise).
 """
 import numpy as np
 import scipy.fft as sfft
 
-__all__ = ["forward", "inverse", "wavevectors", "hermitian_multiplier", "full_spectrum_weights"]
+from .parallel import get_threads
 
-WORKERS = -1
+__all__ = ["forward", "inverse", "wavevectors", "hermitian_multiplier", "full_spectrum_weights"]
 
 
 def forward(f):
     """Half-spectrum coefficients ``f_q`` of a real 1-D or 2-D array."""
-    return sfft.rfftn(f, norm="forward", workers=WORKERS)
+    return sfft.rfftn(f, norm="forward", workers=get_threads())
 
 
 def inverse(fq, shape, overwrite=False):
@@ -36,9 +36,9 @@ def inverse(fq, shape, overwrite=False):
     at 1024² the in-place pass saves a further ~2 ms of a ~15 ms pair).
     """
     if len(shape) == 1:
-        return sfft.irfft(fq, n=shape[0], norm="forward", workers=WORKERS, overwrite_x=overwrite)
-    tmp = sfft.ifft(fq, axis=0, norm="forward", workers=WORKERS, overwrite_x=overwrite)
-    return sfft.irfft(tmp, n=shape[1], axis=1, norm="forward", workers=WORKERS, overwrite_x=True)
+        return sfft.irfft(fq, n=shape[0], norm="forward", workers=get_threads(), overwrite_x=overwrite)
+    tmp = sfft.ifft(fq, axis=0, norm="forward", workers=get_threads(), overwrite_x=overwrite)
+    return sfft.irfft(tmp, n=shape[1], axis=1, norm="forward", workers=get_threads(), overwrite_x=True)
 
 
 def wavevectors(shape, length):

@@ -25,9 +25,9 @@ quadrature along ``x`` at the shifted (off-grid) points, see :func:`square_creep
 import numpy as np
 from scipy import special
 from scipy.linalg import eigh_tridiagonal
-from scipy.signal import lfilter
 
-__all__ = ["strip_elastic", "strip_creep", "square_elastic", "square_creep", "square_creep_sum"]
+__all__ = ["strip_elastic", "strip_creep", "square_elastic", "square_creep", "square_creep_sum", "love_corner",
+           "log_antiderivative"]
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 _GLAG_X, _GLAG_W = np.polynomial.laguerre.laggauss(10)  # nodes <= 30: inside 40 shift
@@ -36,7 +36,7 @@ _CUT = 40.0  # exp(-40) ~ 4e-18: exponential weight beyond it is dropped
 
 
 # ----------------------------------------------------------------------------- strips
-def _phi(t):
+def log_antiderivative(t):
     """``t ln|t| - t`` (0 at t = 0): antiderivative of ``ln|t|``."""
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(t != 0, t * np.log(np.abs(np.where(t != 0, t, 1.0))), 0.0) - t
@@ -45,7 +45,7 @@ def _phi(t):
 def strip_elastic(x, width, ell):
     """Elastic strip coefficient (m/Pa at ``E* = 1``) at offsets ``x`` (m) from its centre."""
     x = np.asarray(x, dtype=float)
-    return -(2.0 / np.pi) * ell * (_phi((x + width / 2) / ell) - _phi((x - width / 2) / ell))
+    return -(2.0 / np.pi) * ell * (log_antiderivative((x + width / 2) / ell) - log_antiderivative((x - width / 2) / ell))
 
 
 def _series_coefficients(terms=40):
@@ -108,8 +108,9 @@ def strip_creep(x, width, shift):
 
 
 # ----------------------------------------------------------------------------- squares
-def _corner(X, Y):
-    """Signed corner function ``X asinh(Y/|X|) + Y asinh(X/|Y|)`` (0 on the axes' limits)."""
+def love_corner(X, Y):
+    """Signed corner function ``X asinh(Y/|X|) + Y asinh(X/|Y|)`` (0 on the axes' limits): the
+    integral of ``1/r`` over the rectangle from the origin to ``(X, Y)``, valid in every quadrant."""
     with np.errstate(divide="ignore", invalid="ignore"):
         ax, ay = np.abs(X), np.abs(Y)
         t1 = np.where(ax > 0, X * np.arcsinh(Y / np.where(ax > 0, ax, 1.0)), 0.0)
@@ -134,8 +135,8 @@ def square_elastic(x, y, width):
         out[far] = width**2 / rf * (1.0 + width**2 / (24.0 * rf**2)) / np.pi
     near = ~far
     xn, yn = x[near], y[near]
-    out[near] = (_corner(xn + h, yn + h) - _corner(xn + h, yn - h) - _corner(xn - h, yn + h)
-                 + _corner(xn - h, yn - h)) / np.pi
+    out[near] = (love_corner(xn + h, yn + h) - love_corner(xn + h, yn - h) - love_corner(xn - h, yn + h)
+                 + love_corner(xn - h, yn - h)) / np.pi
     return out
 
 
@@ -239,6 +240,8 @@ def _sweep(seg, s, yy, width, shift, first_row):
     r = np.exp(-h / shift)
     out = np.empty((s.size, yy.size))
     out[-1] = tail
+    from scipy.signal import lfilter  # imported here: scipy.signal is slow to import
+
     out[-2::-1] = lfilter([1.0], [1.0, -r], seg[::-1], axis=0, zi=(r * tail)[None, :])[0]
     return out
 

@@ -21,17 +21,17 @@ referred to ``ln(v lambda_k) - gamma_Euler``; the rigid approach absorbs the con
 
 Convolution (DC-FFT): the Toeplitz product is a circular convolution on a zero-padded grid
 of ``M >= 2n - 1`` points per axis (``scipy.fft.next_fast_len``), kernel entry of offset
-``i`` stored at ``i mod M``; real FFTs along the last axis, ``workers=-1``. Exact: no
+``i`` stored at ``i mod M``; real FFTs along the last axis on :func:`bem.parallel.get_threads` threads. Exact: no
 periodic images.
 """
 import numpy as np
 import scipy.fft as sfft
 
 from . import influence
+from .parallel import get_threads
 
 __all__ = ["IsolatedHalfSpace"]
 
-WORKERS = -1
 _FOLD = 1e-6  # creep terms with v lambda < 1e-6 d (relaxed) or > 1e6 length (glassy) are folded
 
 
@@ -127,11 +127,12 @@ class IsolatedHalfSpace:
 
     # ------------------------------------------------------------------ convolution
     def _transform(self, kernel):
-        return sfft.rfftn(_embed(kernel, self.shape[0], self._pad), workers=WORKERS)
+        return sfft.rfftn(_embed(kernel, self.shape[0], self._pad), workers=get_threads())
 
     def _apply(self, khat, field):
         s = (self._pad,) * len(self.shape)
-        out = sfft.irfftn(sfft.rfftn(field, s=s, workers=WORKERS) * khat, s=s, workers=WORKERS)
+        workers = get_threads()
+        out = sfft.irfftn(sfft.rfftn(field, s=s, workers=workers) * khat, s=s, workers=workers)
         return out[tuple(slice(0, k) for k in self.shape)]
 
     @property

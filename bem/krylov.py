@@ -15,10 +15,16 @@ corrections, so a warm start is already in its right-hand side.
 """
 import numpy as np
 
-# A second Gram–Schmidt pass is made only when the first removed more than this share of
-# the vector's norm (cancellation); otherwise one pass is orthogonal to working accuracy.
-REORTHOGONALISE = 1 / np.sqrt(2)
-RESTART_BUDGET, RESTART_MAX = 2**26, 200  # doubles of Krylov basis (512 MiB), basis vectors
+TWICE_IS_ENOUGH = 1 / np.sqrt(2)  # default share for a second Gram–Schmidt pass (Kahan–Parlett)
+
+
+def restart_length(n, *, budget=2**26, low=30, high=200):
+    """GMRES restart length for systems of ``n`` unknowns: ``budget / n`` basis vectors (the
+    basis holds ``budget`` doubles at most and is only touched as far as the solve gets),
+    clipped to ``[low, high]``. Restarts are what make strongly non-symmetric systems slow,
+    so the basis is as long as memory allows; orthogonalisation (~4 j n flops at step j)
+    caps it."""
+    return int(min(high, max(low, budget // max(n, 1))))
 
 
 def cg(matvec, b, *, atol, maxiter, M=None):
@@ -52,19 +58,16 @@ def cg(matvec, b, *, atol, maxiter, M=None):
     return x, res, k
 
 
-def gmres(matvec, b, *, atol, maxiter, restart=None, M=None):
+def gmres(matvec, b, *, atol, maxiter, restart=None, M=None, reorthogonalise=TWICE_IS_ENOUGH):
     """Restarted GMRES(``restart``) from ``x = 0``; see module docstring.
 
-    The default restart length is ``RESTART_BUDGET / n`` basis vectors, between 30 and
-    ``RESTART_MAX`` = 400: the basis is at most 512 MiB, and it is only touched as far as the
-    solve gets. Restarts are what make the strongly non-symmetric systems slow: the
-    20-term rubber of the periodic benchmark at 1024² (74k contact points) took 5986
-    operator products with the former cap of 2^22 / n = 56 vectors and 4021 with 400,
-    although a step j then costs ~4 j n flops of orthogonalisation (~3 FFT pairs at j = 345).
+    ``restart`` defaults to :func:`restart_length` of the system. A second Gram–Schmidt pass
+    is made only when the first kept less than ``reorthogonalise`` of the vector's norm
+    (cancellation); otherwise one pass is orthogonal to working accuracy.
     """
     n = b.size
     if restart is None:
-        restart = int(min(RESTART_MAX, max(30, RESTART_BUDGET // max(n, 1))))
+        restart = restart_length(n)
     x = np.zeros_like(b)
     r = b.copy()
     beta = float(np.linalg.norm(r))
@@ -88,7 +91,7 @@ def gmres(matvec, b, *, atol, maxiter, restart=None, M=None):
                 w -= h @ V[: j + 1]
                 H[: j + 1, j] += h
                 norm_new = np.linalg.norm(w)
-                if norm_new > REORTHOGONALISE * norm_w:
+                if norm_new > reorthogonalise * norm_w:
                     break
                 norm_w = norm_new
             H[j + 1, j] = norm_new

@@ -15,38 +15,11 @@ displacements and the rigid approach carries the mean (see :mod:`bem.contact`).
 Check of the sign: the symbol's imaginary part has the sign of ``q_x``, so the
 dissipation ``-∫ p du/dx dA = A sum_q q_x Im(a_q) |p_q|**2 >= 0`` for every ``p``.
 """
-import os
-from concurrent.futures import ThreadPoolExecutor
-
 import numpy as np
 
 from . import fft
 
 __all__ = ["PeriodicHalfSpace"]
-
-LINE_CHUNK = 32  # x-lines per batched dense inverse in line_preconditioner
-LINE_DTYPE = np.float32  # storage of the dense line inverses (see line_preconditioner)
-LINE_BUDGET = 2**30  # bytes of dense line inverses (with their cache) line_preconditioner may hold
-_POOL = None  # (pid, workers), executor: see _run
-
-
-def _run(func, items):
-    """``func(item)`` for every item, on as many threads as :mod:`bem.fft` uses cores
-    (``fft.WORKERS``; 1 runs them here). For the line preconditioner's batched inverses and
-    products: numpy releases the GIL in both, and BLAS itself stays single-threaded."""
-    global _POOL
-    workers = fft.WORKERS
-    if workers is None or workers < 1:
-        workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
-    if workers == 1 or len(items) < 2:
-        for item in items:
-            func(item)
-        return
-    key = (os.getpid(), workers)  # a forked child does not inherit the threads
-    if _POOL is None or _POOL[0] != key:
-        _POOL = (key, ThreadPoolExecutor(max_workers=workers))
-    for _ in _POOL[1].map(func, items):
-        pass
 
 
 def _reciprocal(a):
@@ -54,12 +27,6 @@ def _reciprocal(a):
     out = np.zeros_like(a)
     np.divide(1.0, a, out=out, where=a != 0)
     return out
-
-
-def _chunks(order):
-    """``order`` (line numbers sorted by size) cut into batches of ``LINE_CHUNK``."""
-    order = list(order)
-    return [np.array(order[i: i + LINE_CHUNK]) for i in range(0, len(order), LINE_CHUNK)]
 
 
 class PeriodicHalfSpace:
@@ -97,7 +64,7 @@ class PeriodicHalfSpace:
         with np.errstate(divide="ignore"):
             green = np.where(qnorm > 0, 2.0 * material.plane_strain_factor / qnorm, 0.0)
         self._green = green  # the symbol is green(|q|) * J(-q_x v): an elastic factor and a
-        self._creep = None   # creep factor that acts along x only (see line_preconditioner)
+        self._creep = None   # creep factor that acts along x only (bem.line_preconditioner)
         if material.is_elastic or self.speed == 0.0:
             modulus = material.E0
             self.symbol = green / modulus
@@ -160,121 +127,30 @@ class PeriodicHalfSpace:
 
     @property
     def factors_along_x(self):
-        """Whether :meth:`line_preconditioner` applies: a viscoelastic 2-D operator in motion."""
+        """Whether the symbol factors into an elastic operator and a creep convolution along x
+        (:mod:`bem.line_preconditioner`): a viscoelastic 2-D operator in motion."""
         return self._creep is not None
 
-    def line_preconditioner(self, contact, cache=None):
-        """Approximate inverse of the operator restricted to ``contact`` (boolean, grid
-        shaped), for strongly non-symmetric 2-D operators; ``None`` where it does not apply.
-
-        The symbol factors as ``a_q = green(|q|) J(-q_x v)``: a symmetric elastic operator
-        ``G`` times the creep operator ``C``, a convolution along x alone (the memory of the
-        material, causal in the sliding direction). With ``R`` the restriction to the
-        contact set, the returned map is ``(R C R^T)^-1 R G^-1 R^T``: ``G`` inverted in full
-        space (one FFT pair), ``C`` inverted *exactly on the contact set*, line by line (each
-        x-line of the set is one small dense system with the line kernel ``c[i - j]``). The
-        restricted creep inverse is what removes the non-normality: ``R C^-1 R^T`` (the full
-        space inverse, i.e. ``R A^-1 R^T``) does not, since the memory of a contact spot
-        reaches the gaps behind it. Unpreconditioned GMRES took 1095 products for 8 decades on
-        the 20-term rubber of the periodic benchmark at 512² (its final contact set), ``R
-        A^-1 R^T`` 397, this one 43. ``cache`` (a dict kept by the caller across Newton
-        points) keeps the inverses of lines whose contact has not changed.
-
-        The inverses are stored and applied in ``LINE_DTYPE`` (float32): the line systems
-        are well conditioned (condition numbers up to ~56 on the benchmark rubber's 1024²
-        contact set, where the float32 inverse of its longest line, 250 points, is within
-        1.5e-7 of the float64 one), so the preconditioner changes by ~1e-7 relative, far
-        below the inner solves' tolerance, while the memory traffic of its products halves.
-        Lines are formed in batches of ``LINE_CHUNK`` (sorted by length, padded with the
-        identity), inverted and applied on the FFT's cores (:func:`_run`). The rubber's
-        recorded contact sets, replayed (all Newton points of one solve on the finest grid):
-        building 3.96 s -> 2.24 s at 1024² and 31.7 s -> 14.1 s at 2048², one application
-        per set 29 -> 21 ms and 136 -> 108 ms (with its FFT pair), against float64, one thread,
-        a gather through a modulo and a second padding pass; the operator products of the
-        benchmark solves are unchanged (593, 556, 591 at 256²-1024²).
-        """
-        if not self.factors_along_x:
-            return None
-        n1 = self.shape[1]
-        kernel = self.__dict__.get("_line_kernel")
-        if kernel is None:  # c[k]: response at x_i + k of a unit load at x_i (one line)
+    def creep_line_kernel(self, dtype=np.float64):
+        """The creep factor's line kernel ``c[k]`` (response at ``x_i + k`` of a unit load at
+        ``x_i`` on one x-line), unwrapped for gathers without a modulo: ``kernel[d + n0 - 1] =
+        c[d mod n0]``; in ``dtype``, computed once per dtype. For
+        :func:`bem.line_preconditioner.line_preconditioner`."""
+        key = f"_line_kernel_{np.dtype(dtype).name}"
+        kernel = self.__dict__.get(key)
+        if kernel is None:
             c = np.fft.ifft(self._creep).real
-            # unwrapped for gathers without a modulo: kernel[d + n0 - 1] = c[d mod n0]
-            kernel = self._line_kernel = np.concatenate([c[1:], c]).astype(LINE_DTYPE)
-        idx = np.flatnonzero(contact)
-        xs, ys = np.divmod(idx, n1)
-        order = np.lexsort((xs, ys))  # by line (y), then along it (x)
-        lines, starts, counts = np.unique(ys[order], return_index=True, return_counts=True)
-        itemsize = np.dtype(LINE_DTYPE).itemsize
-        if 2 * itemsize * float(np.sum(counts.astype(float) ** 2)) > LINE_BUDGET:
-            return None  # dense line inverses (and their cache) would exceed the budget
-        positions = [order[a: a + c] for a, c in zip(starts, counts)]  # in idx, along x
-        keys = [xs[pos].tobytes() for pos in positions]
-        xs_padded = np.append(xs, 0)  # read through ``pos``, whose padding is idx.size
-        cache = {} if cache is None else cache
-        kept = {}
-        blocks, jobs = [], []
-        for chunk in _chunks(np.argsort(counts, kind="stable")):
-            m = int(counts[chunk].max())
-            pos = np.full((len(chunk), m), idx.size)  # idx.size: padding, reads a zero
-            for row, k in enumerate(chunk):
-                pos[row, : counts[k]] = positions[k]
-            valid = pos < idx.size
-            mats = np.zeros((len(chunk), m, m), dtype=LINE_DTYPE)
-            missing = []
-            for row, k in enumerate(chunk):
-                hit = cache.get(lines[k])
-                if hit is not None and hit[0] == keys[k]:
-                    mats[row, : counts[k], : counts[k]] = hit[1]
-                else:
-                    missing.append(row)
-            if missing:
-                jobs.append((mats, missing, xs_padded[pos[missing]], valid[missing]))
-            for row, k in enumerate(chunk):  # views: the cache keeps these blocks alive
-                kept[lines[k]] = (keys[k], mats[row, : counts[k], : counts[k]])
-            blocks.append((pos, valid, pos[valid], mats))
+            kernel = np.concatenate([c[1:], c]).astype(dtype)
+            setattr(self, key, kernel)
+        return kernel
 
-        def invert(job):
-            mats, rows, x, valid = job
-            mats[rows] = np.linalg.inv(self._line_matrices(kernel, x, valid))
-
-        _run(invert, jobs)
-        cache.clear()
-        cache.update(kept)
+    def elastic_inverse(self, field):
+        """``G^-1 field``: the inverse of the elastic factor ``green(|q|)`` of the symbol (zero
+        mean), in the precision ``self.dtype``."""
         green_inverse = self.__dict__.get("_green_inverse")
         if green_inverse is None:
             green_inverse = self._green_inverse = _reciprocal(self._green)
-        full = np.zeros(self.shape, dtype=self.dtype)
-        flat = full.reshape(-1)
-
-        def apply(r):
-            flat[idx] = r
-            w = np.append(np.take(self._multiply(full, green_inverse).reshape(-1), idx), 0.0)
-            w = w.astype(LINE_DTYPE)
-            z = np.empty_like(r)
-
-            def solve(block):
-                pos, valid, dest, inv = block
-                z[dest] = np.matmul(inv, w[pos][:, :, None])[:, :, 0][valid]
-
-            _run(solve, blocks)
-            return z
-
-        return apply
-
-    @staticmethod
-    def _line_matrices(kernel, x, valid):
-        """Dense creep matrices ``c[x_i - x_j]`` of a batch of lines (``x``: positions along
-        x, padded; ``valid``: the real entries), with the identity on the padding."""
-        n0 = (kernel.size + 1) // 2
-        x = x.astype(np.int32)
-        mats = kernel[(x + (n0 - 1))[:, :, None] - x[:, None, :]]
-        weight = valid.astype(LINE_DTYPE)
-        mats *= weight[:, :, None]
-        mats *= weight[:, None, :]
-        rows, cols = np.nonzero(~valid)
-        mats[rows, cols, cols] = 1.0
-        return mats
+        return self._multiply(field, green_inverse)
 
     def coarsened(self):
         """The same operator on the grid with half the points per axis (even sides only)."""
@@ -295,7 +171,7 @@ class PeriodicHalfSpace:
     def single_precision(self):
         """The same operator with its products in single precision (float32 fields,
         complex64 spectra), for the contact solver's inner Krylov solves: see
-        :data:`bem.contact.SINGLE_PRECISION_INNER`. Built once and kept."""
+        :attr:`bem.contact.ContactOptions.single_precision`. Built once and kept."""
         twin = self.__dict__.get("_single")
         if twin is None:
             twin = self._twin("_inv", "_green_inverse")  # recomputed from the single symbols

@@ -1,4 +1,4 @@
-"""Public entry points: one steady sliding solve and a sweep over speeds.
+"""Public entry point: one steady sliding solve (sweeps over speeds: :mod:`bem.sweep`).
 
 Units SI. Load is the total normal force on the cell (N) for 2-D surfaces and the force
 per unit length (N/m) for 1-D profiles. The indenter slides at ``speed`` (m/s) in ``+x``.
@@ -21,80 +21,26 @@ the pressure vanishes).
 """
 import logging
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import direction as sliding_direction
 from . import fft
-from .checks import check_array, check_int, check_positive
-from .contact import solve_contact
+from .checks import check_array, check_int, check_keywords, check_positive, show
+from .contact import ContactOptions, solve_contact
 from .errors import ConvergenceError, InputError
 from .isolated import IsolatedHalfSpace
 from .material import Material
 from .periodic import PeriodicHalfSpace
-from .surfaces import Surface
+from .result import SlidingResult
+from .surface import Surface
 
-__all__ = ["SlidingResult", "FrictionCurve", "solve", "friction_curve"]
+__all__ = ["SlidingResult", "solve"]
 
 log = logging.getLogger(__name__)
 
 _CACHE_SIZE = 4
 _operators = {}
-
-
-@dataclass(frozen=True, eq=False)
-class SlidingResult:
-    """Steady sliding contact solution (arrays shaped like the heights).
-
-    Attributes
-    ----------
-    pressure : ndarray
-        Contact pressure (Pa), >= 0.
-    displacement : ndarray
-        Normal surface displacement (m, positive into the solid). Periodic cells: zero mean
-        (the periodic half-space has no defined mean displacement; the approach carries it).
-        Isolated 2-D contacts: absolute (zero at infinity); isolated profiles: up to the
-        constant of plane strain (see :mod:`bem.isolated`).
-    gap : ndarray
-        ``displacement - (h - max(h) + approach)`` (m), >= 0, zero in contact.
-    approach : float
-        Rigid approach from first touch (m): relative to the mean plane of the deformed
-        surface on periodic cells, to the undeformed surface far away for isolated 2-D
-        contacts, and with the displacement's constant for isolated profiles.
-    contact_fraction : float
-        Fraction of the cell (isolated contacts: of the domain) in contact (``pressure > 0``).
-    friction, friction_eq6 : float
-        Viscoelastic friction coefficient, dissipation form and eq. 6 (see module doc).
-    dissipated_power : float
-        ``friction * load * speed`` (W; W/m for profiles).
-    load, speed : float
-        Normal force (N; N/m for profiles) and sliding speed (m/s).
-    iterations, matvecs : int
-        Active-set iterations and operator applications (FFT pairs).
-    residual : float
-        Complementarity residual reached (see :mod:`bem.contact`).
-    success : bool
-    message : str
-    wall_time : float
-        Seconds spent in the solve.
-    """
-
-    pressure: np.ndarray
-    displacement: np.ndarray
-    gap: np.ndarray
-    approach: float
-    contact_fraction: float
-    friction: float
-    friction_eq6: float
-    dissipated_power: float
-    load: float
-    speed: float
-    iterations: int
-    matvecs: int
-    residual: float
-    success: bool
-    message: str
-    wall_time: float = 0.0
 
 
 def _as_surface(surface):
@@ -124,7 +70,16 @@ def operator_for(surface, material, speed, periodic=True):
     return op
 
 
-def _check_inputs(surface, material, speed, load, approach, rtol):
+def clear_operator_cache():
+    """Forget the response operators :func:`operator_for` keeps (the last few grids, materials and
+    speeds), e.g. to time an operator's construction or to free its memory."""
+    _operators.clear()
+
+
+def check_inputs(surface, material, speed, load, approach, rtol):
+    """Validate the arguments :func:`solve` shares with every caller that plans solves ahead
+    (e.g. a study checking its range before it writes anything); return them converted,
+    ``(surface, speed, load, approach, rtol)``. Raises :class:`~bem.errors.InputError`."""
     surface = _as_surface(surface)
     if not isinstance(material, Material):
         raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
@@ -138,19 +93,23 @@ def _check_inputs(surface, material, speed, load, approach, rtol):
         approach = check_positive("approach", approach)
     rtol = check_positive("rtol", rtol)
     if rtol >= 1:
-        raise InputError(f"rtol must be in (0, 1), got {rtol!r}")
+        raise InputError(f"rtol must be in (0, 1), got {show(rtol)}")
     return surface, speed, load, approach, rtol
 
 
 _ISOLATED_METHODS = ("auto", "uniform", "adaptive")
+# keywords of bem.adaptive.solve_adaptive that solve() passes on with method="adaptive"
+ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling", "height", "max_elements")
+_SOLVE_KEYWORDS = ("speed", "load", "approach", "periodic", "method", "rtol", "maxiter", "initial",
+                   "raise_on_failure", "contact_options", "direction")
 _PERIODIC_METHODS = ("auto", "active-set")
 
 
 def _choose_isolated_method(surface, material, *, speed, load, rtol):
     """The isolated-contact method that ``method="auto"`` selects: ``"uniform"`` or ``"adaptive"``.
 
-    Always the uniform DC-FFT grid, the faster one in ``benchmarks/isolated.py`` (tables:
-    ``benchmarks/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
+    Always the uniform DC-FFT grid, the faster one in ``viscobem_bench/isolated.py`` (tables:
+    ``viscobem_bench/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
     dates and machine load, 2 shared cores at load 6-8, bem/ frozen for each run; figures
     ``isolated_pareto*.png``). Problems: rolling cylinder vs Hunter and sliding sphere vs a
     Richardson-extrapolated reference, each at ``V lambda / a0 = 0.3, 1, 5``, plus the sphere
@@ -169,7 +128,8 @@ def _choose_isolated_method(surface, material, *, speed, load, rtol):
 
 
 def solve(surface, material, *, speed, load=None, approach=None, periodic=True, method="auto",
-          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, **adaptive_options):
+          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, contact_options=None,
+          direction=0.0, **adaptive_options):
     """Steady sliding of a rigid surface over a viscoelastic half-space.
 
     Parameters
@@ -202,28 +162,64 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     raise_on_failure : bool
         Raise :class:`bem.errors.ConvergenceError` when the tolerance is not reached
         (default). With ``False`` the result comes back with ``success=False``.
+    contact_options : bem.contact.ContactOptions, optional
+        Tunables of the contact solver (uniform grids); default ``ContactOptions()``.
+    direction : float
+        Sliding direction (radians from ``+x`` toward ``+y``; default 0), see
+        :mod:`bem.direction`: ``speed`` is along it, ``friction`` opposes it, fields stay on the
+        surface's grid. 1-D profiles: 0 or pi only.
 
     Returns
     -------
     SlidingResult
+
+    Raises
+    ------
+    bem.errors.InputError
+        For an argument out of range, a string where a number is meant, or an unknown
+        keyword (named, with the closest valid one).
+
+    Examples
+    --------
+    A rigid sinusoid (amplitude 1 µm, wavelength 1 mm) pressed with 1 N on a 1 mm cell of
+    an elastic half-space:
+
+    >>> import bem
+    >>> s = bem.surfaces.sinusoid(64, 1e-3, amplitude=1e-6)
+    >>> r = bem.solve(s, bem.Material.elastic(1e7), speed=0.0, load=1.0)
+    >>> r.success, round(r.friction, 12)
+    (True, 0.0)
+    >>> bem.solve(s, bem.Material.elastic(1e7), speed=0.0, lod=1.0)
+    Traceback (most recent call last):
+    ...
+    bem.errors.InputError: solve() got unknown keyword argument 'lod' (did you mean 'load'?); valid: ...
     """
-    surface, speed, load, approach, rtol = _check_inputs(surface, material, speed, load, approach, rtol)
+    check_keywords("solve", adaptive_options, ADAPTIVE_OPTIONS + _SOLVE_KEYWORDS)
+    surface, speed, load, approach, rtol = check_inputs(surface, material, speed, load, approach, rtol)
+    # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
+    theta, turns = sliding_direction.plan(direction, surface.ndim, periodic, method)
+    if turns:
+        return sliding_direction.solve_turned(
+            solve, surface, material, turns, speed=speed, load=load, approach=approach, periodic=periodic,
+            method=method, rtol=rtol, maxiter=maxiter, initial=initial, raise_on_failure=raise_on_failure,
+            contact_options=contact_options, **adaptive_options)
     if not isinstance(periodic, (bool, np.bool_)):
-        raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {periodic!r}")
+        raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {show(periodic)}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
     if method not in methods:
         raise InputError(f"method must be one of {', '.join(repr(m) for m in methods)} for "
-                         f"periodic={bool(periodic)}, got {method!r}")
+                         f"periodic={bool(periodic)}, got {show(method)}")
     if adaptive_options and method != "adaptive":
-        raise InputError(f"unexpected keyword(s) {sorted(adaptive_options)}: only method='adaptive' "
-                         f"takes extra options")
+        names = ", ".join(repr(k) for k in sorted(adaptive_options))
+        raise InputError(f"{names} {'is an option' if len(adaptive_options) == 1 else 'are options'} of "
+                         f"method='adaptive' (isolated contacts) only, got method={method!r}")
     if not periodic and method == "auto":
         method = _choose_isolated_method(surface, material, speed=speed, load=load, rtol=rtol)
     if method == "adaptive":
         if load is None:
             raise InputError("approach (displacement control) is not available with method='adaptive'; "
                              "give load (N, or N/m for profiles)")
-        from .adaptive import solve_adaptive
+        from .adaptive.solver import solve_adaptive
 
         return solve_adaptive(surface, material, speed=speed, load=load, rtol=rtol, maxiter=maxiter,
                               raise_on_failure=raise_on_failure, **adaptive_options)
@@ -235,18 +231,19 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     if approach is not None and periodic:
         limit = float(surface.heights.max() - surface.heights.mean())
         if not approach < limit:
-            raise InputError(f"approach must be in (0, {limit!r}) m: at max(h) - mean(h) the cell is in full "
-                             f"contact and the load is unbounded (zero-mean displacement), got {approach!r}")
+            raise InputError(f"approach must be in (0, {show(limit)}) m: at max(h) - mean(h) the cell is in full "
+                             f"contact and the load is unbounded (zero-mean displacement), got {show(approach)}")
     t0 = time.perf_counter()
-    op = operator_for(surface, material, speed, periodic)
+    op = sliding_direction.operator(operator_for, surface, material, speed, periodic, theta)
     area = op.area
     sol = solve_contact(op, surface.heights, mean_pressure=None if load is None else load / area,
                         approach=approach, rtol=rtol, maxiter=maxiter, initial=initial,
-                        raise_on_failure=False)
+                        raise_on_failure=False, options=contact_options or ContactOptions())
     p = sol.pressure
     total = float(p.mean() * area)
     if total > 0:
         friction, friction_eq6 = (_friction_periodic if periodic else _friction_isolated)(op, surface, p, total)
+        friction_eq6 = sliding_direction.eq6(op, surface.heights, p, total, friction_eq6)
     else:
         friction = friction_eq6 = 0.0
     result = SlidingResult(
@@ -258,7 +255,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
         wall_time=time.perf_counter() - t0)
     log.info("speed %.3e m/s: %s", speed, sol.message)
     if not sol.success and raise_on_failure:
-        raise ConvergenceError(f"speed {speed!r} m/s: {sol.message}", result)
+        raise ConvergenceError(f"speed {show(speed)} m/s: {sol.message}", result)
     return result
 
 
@@ -275,89 +272,3 @@ def _friction_isolated(op, surface, p, total):
     friction = op.dissipation_integral(p) / total
     dhdx = np.gradient(surface.heights, op.spacing, axis=0)
     return friction, float(-np.sum(p * dhdx) * op.spacing ** surface.ndim / total)
-
-
-@dataclass(frozen=True, eq=False)
-class FrictionCurve:
-    """A sweep over speeds (arrays in the order of ``speeds``; failed points are NaN).
-
-    ``results[i]`` is the :class:`SlidingResult` of ``speeds[i]`` or ``None`` if it failed;
-    ``messages[i]`` says why.
-    """
-
-    speeds: np.ndarray
-    friction: np.ndarray
-    friction_eq6: np.ndarray
-    contact_fraction: np.ndarray
-    dissipated_power: np.ndarray
-    iterations: np.ndarray
-    residual: np.ndarray
-    success: np.ndarray
-    messages: list
-    results: list = field(repr=False)
-
-    @property
-    def all_converged(self):
-        return bool(np.all(self.success))
-
-
-def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
-                   progress=False, callback=None, periodic=True, method="auto"):
-    """Solve at each speed; warm-start each from its neighbour (in increasing speed).
-
-    Parameters
-    ----------
-    speeds : array_like
-        Sliding speeds (m/s), >= 0.
-    load : float
-        Normal force (N; N/m for profiles).
-    progress : bool
-        Show a progress bar (tqdm).
-    callback : callable, optional
-        ``callback(index, speed, result_or_None, message)`` after each point, e.g. to
-        write it to disk at once; a point that fails to converge is reported with
-        ``None`` and the sweep goes on.
-    periodic, method
-        As in :func:`solve` (``periodic=False``: isolated contact). The warm start is
-        skipped for ``method="adaptive"`` (its mesh differs from the surface's grid).
-
-    Returns
-    -------
-    FrictionCurve
-    """
-    try:
-        speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
-    except (TypeError, ValueError):
-        raise InputError(f"speeds must be a list of numbers (m/s), got {speeds!r}") from None
-    if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {speeds!r}")
-    surface, _, load, _, rtol = _check_inputs(surface, material, 0.0, load, None, rtol)
-    from tqdm.auto import tqdm
-
-    n = speeds.size
-    results, messages = [None] * n, [""] * n
-    previous = None
-    for i in tqdm(np.argsort(speeds, kind="stable"), total=n, disable=not progress,
-                  desc="friction curve", unit="speed"):
-        try:
-            res = solve(surface, material, speed=speeds[i], load=load, rtol=rtol, maxiter=maxiter,
-                        initial=previous if warm_start and method != "adaptive" else None,
-                        periodic=periodic, method=method)
-        except ConvergenceError as err:
-            res, messages[i] = None, str(err)
-            log.warning("%s", err)
-        else:
-            messages[i] = res.message
-            previous = res.pressure
-        results[i] = res
-        if callback is not None:
-            callback(int(i), float(speeds[i]), res, messages[i])
-
-    def column(attr, dtype=float):
-        return np.array([getattr(r, attr) if r is not None else np.nan for r in results], dtype=dtype)
-
-    return FrictionCurve(speeds=speeds, friction=column("friction"), friction_eq6=column("friction_eq6"),
-                         contact_fraction=column("contact_fraction"),
-                         dissipated_power=column("dissipated_power"), iterations=column("iterations"),
-                         residual=column("residual"), success=np.array([r is not None for r in results]),
-                         messages=messages, results=results)

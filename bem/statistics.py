@@ -19,7 +19,7 @@ is treated as periodic, as the solvers treat it.
 import numpy as np
 
 from . import fft
-from .checks import check_array, check_int, check_positive, check_range
+from .checks import check_array, check_int, check_positive, check_range, show
 from .errors import InputError
 
 __all__ = ["periodogram", "rms_height", "rms_slope", "psd", "psd_target"]
@@ -29,7 +29,7 @@ def _field(surface, length, *, need_length=True):
     """Heights (float array, a copy) and cell side of a surface or of an array."""
     if hasattr(surface, "heights") and hasattr(surface, "length"):
         if length is not None:
-            raise InputError(f"length is taken from the surface; pass None, got {length!r}")
+            raise InputError(f"length is taken from the surface; pass None, got {show(length)}")
         return np.asarray(surface.heights, dtype=float), float(surface.length)
     h = check_array("heights", surface, ndim=(1, 2))
     if h.ndim == 2 and h.shape[0] != h.shape[1]:
@@ -161,7 +161,7 @@ def psd(surface, length=None, *, bins=None):
         else:
             edges = check_array("bins", bins, ndim=1, min_size=2)
             if np.any(np.diff(edges) <= 0):
-                raise InputError(f"bins must be strictly increasing edges (rad/m), got {edges!r}")
+                raise InputError(f"bins must be strictly increasing edges (rad/m), got {show(edges)}")
         index = np.searchsorted(edges, mag, side="right") - 1
         inside = (index >= 0) & (index < edges.size - 1)
         mag, c, w, index = mag[inside], c[inside], w[inside], index[inside]
@@ -217,7 +217,7 @@ def psd_target(q, *, hurst, cutoff_wavevector, rolloff_wavevector, dim=2, prefac
     q_r = check_positive("rolloff_wavevector", rolloff_wavevector)
     if q_r > q_1:
         raise InputError(f"rolloff_wavevector must be in (0, cutoff_wavevector = {q_1}], "
-                         f"got {rolloff_wavevector!r}")
+                         f"got {show(rolloff_wavevector)}")
     prefactor = check_positive("prefactor", prefactor, allow_zero=True)
     s = check_positive("anisotropy", anisotropy)
     b = check_positive("directional_factor", directional_factor)
@@ -230,7 +230,7 @@ def psd_target(q, *, hurst, cutoff_wavevector, rolloff_wavevector, dim=2, prefac
         factor = (qx**2 + b * qy**2) / np.where(mag2 > 0, mag2, 1.0)
     elif s != 1.0 or b != 1.0:
         raise InputError(f"q must be components (qx, qy) for anisotropy != 1 or directional_factor != 1, "
-                         f"got anisotropy={s!r}, directional_factor={b!r}")
+                         f"got anisotropy={show(s)}, directional_factor={show(b)}")
     else:
         q_eff = np.abs(np.asarray(q[0] if isinstance(q, tuple) else q, dtype=float))
     shape = np.maximum(q_eff, q_r) ** exponent

@@ -2,7 +2,7 @@
 
 ``scipy.sparse.linalg.splu`` (SuperLU) is the default and the fallback. ``pypardiso``
 (MKL PARDISO, from PyPI) is used when asked for with ``solver="pardiso"`` and installed;
-``solver="auto"`` picks it when it is importable. See ``benchmarks/fem.py`` for timings.
+``solver="auto"`` picks it when it is importable. See ``viscobem_bench/fem.py`` for timings.
 """
 from __future__ import annotations
 
@@ -56,7 +56,8 @@ class _Pardiso:
         return self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
 
 
-def _pardiso_available():
+def pardiso_available():
+    """True if the optional PARDISO solver (``pypardiso``, the ``fem`` extra) is importable."""
     try:
         import pypardiso  # noqa: F401
     except ImportError:
@@ -75,9 +76,9 @@ def factorize(A, solver="auto"):
     """
     if solver not in SOLVERS:
         raise InputError(f"solver must be one of {SOLVERS}, got {solver!r}")
-    if solver == "pardiso" and not _pardiso_available():
+    if solver == "pardiso" and not pardiso_available():
         raise InputError("solver='pardiso' needs the optional package pypardiso (pip install pypardiso)")
-    use_pardiso = solver == "pardiso" or (solver == "auto" and _pardiso_available())
+    use_pardiso = solver == "pardiso" or (solver == "auto" and pardiso_available())
     fac = _Pardiso(A) if use_pardiso else _SuperLU(A)
     log.debug("factorised %d unknowns with %s", A.shape[0], fac.name)
     return fac

@@ -163,7 +163,8 @@ def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_ban
     keep_fields : bool
         Keep quadrature-point fields in ``result.fields``.
     vtk : str or path, optional
-        Write the fields to this ``.vtu`` file (meshio).
+        Write the fields to this ``.vtm`` (block and contact interface) or ``.vtu`` (block)
+        file, with the metadata (:mod:`fem_reference.vtk`).
     mesh : {"uniform", "graded"}
         ``"graded"`` grades the mesh geometrically toward the contact edges and the
         leading-edge layers (:mod:`fem_reference.graded`) and remeshes until the edges
@@ -288,7 +289,7 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         x=xc, pressure=pres, displacement=out["w"] @ sol.lam, forces=sol.lam,
         leading_edge=lead, trailing_edge=trail,
         friction=mu, friction_dissipation=power_fields / (P * V) if V > 0 else 0.0,
-        dissipated_power=mu * P * V, peak_pressure=float(pres.max()), load=P, speed=V, radius=R,
+        dissipated_power=power_fields, peak_pressure=float(pres.max()), load=P, speed=V, radius=R,
         approach=sol.d, element_size=hs.element_size, domain_width=hs.width[1], domain_depth=hs.depth,
         grading=ratio, n_elements=hs.n_elements, n_unknowns=op.n_unknowns, iterations=sol.iterations,
         residual=sol.residual, material=material, success=not problems,
@@ -299,7 +300,7 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
     if vtk is not None:
         from .vtk import write_fields
 
-        write_fields(vtk, res.fields)
+        write_fields(vtk, res.fields, res)
         if not keep_fields:
             res = _drop_fields(res)
     log.info("rolling V=%g (%s mesh, %d passes): mu=%.6g, edges [%g, %g], %d unknowns, %.1f s, %s", V, mesh,

@@ -34,7 +34,8 @@ class RollingResult:
         vs 4.6 % at ``V lambda = 100 a0``, where the pressure centroid moves by a
         hundredth of a node spacing).
     dissipated_power : float
-        ``mu P V`` (W/m).
+        Viscous dissipation integrated over the block (W/m), from the internal variables;
+        it matches ``friction * load * speed`` (the moment form) to the discretisation error.
     peak_pressure, load, speed, radius, approach : float
         Pa, N/m, m/s, m, m (the approach depends on the truncation depth in 2-D).
     element_size, domain_width, domain_depth, grading : float

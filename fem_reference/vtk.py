@@ -1,15 +1,50 @@
-"""VTK (.vtu) export of FEM fields through meshio, for ParaView.
+"""VTK export of a steady-rolling solution for ParaView: the block and its contact interface.
 
-Point data (at mesh vertices): ``displacement`` (m, 3 components, z = 0). Cell data
-(element averages over the 3x3 Gauss points, weighted by the quadrature weights):
-``strain`` and ``stress`` (Voigt, engineering shear; Pa for stress), ``alpha_k`` (viscous
-strain of Prony term ``k``), ``dissipation`` (W/m^3).
+``write_fields(path, fields, result)`` writes, by the extension of ``path``:
+
+- ``.vtm``: a multiblock with two datasets, ``volume`` (the block, .vtu) and ``interface``
+  (the candidate contact band of the top surface, .vtp), in a folder beside the .vtm;
+- ``.vtu``: the volume only.
+
+Volume, point data: ``displacement`` (m, 3 components, z = 0). Cell data (element averages of
+the Gauss-point values, weighted by the quadrature weights): ``stress`` and ``strain`` as full
+3x3 tensors (components ``XX, XY, XZ, YX, YY, YZ, ZX, ZY, ZZ``; plane strain: ``strain ZZ = 0``,
+``stress ZZ`` from the trace, :mod:`fem_reference.fields`), ``von_mises`` and
+``hydrostatic_pressure`` (Pa, positive in compression), ``viscous_strain_tau=<tau>s`` per Prony
+term (the strain of its dashpot, a full tensor) and ``dissipation`` (W/m^3).
+
+Interface, point data at the top nodes ``x`` (m): ``pressure`` (Pa), ``gap`` (m, with the
+cylinder's profile ``h = -x^2/2R`` and the approach), ``contact`` (1 in contact), ``depression``
+(m, into the solid) and ``displacement`` (m, 3 components, from the field).
+
+Field data on both (arrays of one value unless stated): ``speed`` (m/s), ``load`` (N/m),
+``radius`` (m), ``E0``, ``E_inf`` (Pa), ``nu``, ``prony_moduli`` (Pa) and ``relaxation_times``
+(s, one entry per term), ``creep_times`` (s), ``dimensionless_speed`` (``V max(lambda_k) / a0``,
+retardation length over the relaxed Hertz half-width), ``friction``, ``approach`` (m) and
+``units`` (a note).
+
+``write_indentation(path, ...)`` writes the creep indentation as a ``.pvd`` time series (time in s) of
+``.vtm`` files with the same names, in the ``(r, z)`` plane (x = r, y = z; the tensors' ``ZZ`` is the
+hoop component ``theta theta``): ``displacement``, ``strain``, ``viscous_strain_tau=<tau>s`` in the
+block; ``pressure``, ``gap``, ``contact``, ``depression`` on the interface; field data ``time``,
+``load`` (N), ``radius``, the material and ``units``. (The pressure unknown of the mixed solve is
+not kept by the time stepper, so the block carries no stress.)
 """
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
-__all__ = ["write_fields", "fields_to_meshio"]
+from . import fields as derived
+
+__all__ = ["write_fields", "write_indentation", "volume_grid", "interface_points", "metadata", "UNITS",
+           "COMPONENTS"]
+
+UNITS = ("SI units: lengths and displacements m, stresses and pressures Pa, speed m/s, load N/m (per unit "
+         "length in z), times s, dissipation W/m^3; strains dimensionless (tensor components, not engineering "
+         "shear); pressure and hydrostatic_pressure positive in compression; the cylinder moves in +x")
+COMPONENTS = ("XX", "XY", "XZ", "YX", "YY", "YZ", "ZX", "ZY", "ZZ")
 
 
 def _cell_average(values, weights, nel):
@@ -20,29 +55,174 @@ def _cell_average(values, weights, nel):
     return np.einsum("eq,eqc->ec", w, v) / w.sum(axis=1)[:, None]
 
 
-def fields_to_meshio(fields):
-    """Build a ``meshio.Mesh`` from ``RollingResult.fields``-style ``fields``."""
-    import meshio
+def tau_name(tau):
+    """Array name of the viscous strain of the Prony term with relaxation time ``tau`` (s)."""
+    return f"viscous_strain_tau={tau:.3g}s"
 
-    mesh, basis, u = fields["mesh"], fields["basis"], fields["u"]
+
+def _name_components(dataset):
+    for name in ("stress", "strain", *[k for k in dataset.cell_data if k.startswith("viscous_strain")]):
+        arr = dataset.GetCellData().GetArray(name)
+        if arr is not None:
+            for i, c in enumerate(COMPONENTS):
+                arr.SetComponentName(i, c)
+
+
+def volume_grid(fields, material=None):
+    """A pyvista UnstructuredGrid of the block (see module docstring)."""
+    import pyvista as pv
+
+    mesh, basis, u, weights = fields["mesh"], fields["basis"], fields["u"], fields["weights"]
     nel = mesh.t.shape[1]
-    weights = fields["weights"]
-    ncomp = fields["strain"].shape[1]
-    disp = np.zeros((mesh.p.shape[1], 3))
-    disp[:, :2] = u[basis.nodal_dofs].T
-    cell = {
-        "strain": _cell_average(fields["strain"].reshape(-1, ncomp), weights, nel),
-        "stress": _cell_average(fields["stress"].reshape(-1, ncomp), weights, nel),
-        "dissipation": _cell_average(fields["dissipation"], weights, nel)[:, 0],
-    }
-    for k, a in enumerate(fields["alpha"]):
-        cell[f"alpha_{k}"] = _cell_average(np.asarray(a).reshape(-1, ncomp), weights, nel)
     points = np.zeros((mesh.p.shape[1], 3))
     points[:, :2] = mesh.p.T
-    return meshio.Mesh(points, [("quad", mesh.t.T.copy())], point_data={"displacement": disp},
-                       cell_data={k: [v] for k, v in cell.items()})
+    cells = np.hstack([np.full((nel, 1), 4), mesh.t.T]).ravel()
+    grid = pv.UnstructuredGrid(cells, np.full(nel, pv.CellType.QUAD, dtype=np.uint8), points)
+    disp = np.zeros((mesh.p.shape[1], 3))
+    disp[:, :2] = u[basis.nodal_dofs].T
+    grid.point_data["displacement"] = disp
+    stress = derived.stress_tensor(fields["stress"], fields["pressure"])
+    grid.cell_data["stress"] = _cell_average(stress, weights, nel)
+    grid.cell_data["strain"] = _cell_average(derived.strain_tensor(fields["strain"]), weights, nel)
+    grid.cell_data["von_mises"] = _cell_average(derived.von_mises(stress), weights, nel)[:, 0]
+    grid.cell_data["hydrostatic_pressure"] = _cell_average(derived.hydrostatic_pressure(stress), weights, nel)[:, 0]
+    grid.cell_data["dissipation"] = _cell_average(fields["dissipation"], weights, nel)[:, 0]
+    taus = material.relaxation_times if material is not None else range(len(fields["alpha"]))
+    for tau, a in zip(taus, fields["alpha"]):
+        grid.cell_data[tau_name(tau)] = _cell_average(derived.strain_tensor(np.asarray(a).reshape(-1, 3)),
+                                                      weights, nel)
+    _name_components(grid)
+    return grid
 
 
-def write_fields(path, fields):
-    """Write ``fields`` (see :func:`fields_to_meshio`) to the ``.vtu`` file ``path``."""
-    fields_to_meshio(fields).write(str(path))
+def interface_points(result):
+    """A pyvista PolyData of the candidate contact band's top nodes (see module docstring)."""
+    import pyvista as pv
+
+    from .surface import top_surface
+
+    x = np.asarray(result.x, float)
+    pts = np.zeros((x.size, 3))
+    pts[:, 0] = x
+    poly = pv.PolyData(pts)
+    poly.lines = np.hstack([[x.size], np.arange(x.size)])
+    w = np.asarray(result.displacement, float)
+    poly.point_data["pressure"] = np.asarray(result.pressure, float)
+    poly.point_data["gap"] = w + x**2 / (2 * result.radius) - result.approach
+    poly.point_data["contact"] = (np.asarray(result.pressure) > 0).astype(np.uint8)
+    poly.point_data["depression"] = w
+    disp = np.zeros((x.size, 3))
+    f = result.fields
+    if f:
+        top = top_surface(f["basis"])
+        cand = np.abs(top.x) <= np.max(np.abs(x)) * (1 + 1e-12)
+        u = np.asarray(f["u"])
+        disp[:, 0] = u[top.ydofs[cand] - 1]  # the x DOF precedes the y DOF of each node
+        disp[:, 1] = u[top.ydofs[cand]]
+    poly.point_data["displacement"] = disp
+    return poly
+
+
+def _hertz_half_width(E, nu, radius, load):
+    return float(np.sqrt(4.0 * load * radius * (1.0 - nu**2) / (np.pi * E)))
+
+
+def metadata(result):
+    """Field data of a :class:`~fem_reference.RollingResult` (see module docstring)."""
+    m = result.material
+    a0 = _hertz_half_width(m.E0, m.nu, result.radius, result.load)
+    lam = float(np.max(m.creep_times)) if m.creep_times.size else 0.0
+    return dict(speed=[result.speed], load=[result.load], radius=[result.radius], **_material_data(m),
+                dimensionless_speed=[result.speed * lam / a0], friction=[result.friction], approach=[result.approach],
+                units=[UNITS])
+
+
+def _add_field_data(dataset, meta):
+    for k, v in meta.items():
+        dataset.field_data[k] = v
+
+
+def write_fields(path, fields, result=None):
+    """Write ``fields`` (``RollingResult.fields``) and, with ``result``, the interface and the
+    metadata, to ``path`` (.vtm or .vtu; see module docstring). Returns the path."""
+    import pyvista as pv
+
+    path = Path(path)
+    vol = volume_grid(fields, None if result is None else result.material)
+    meta = metadata(result) if result is not None else {"units": [UNITS]}
+    _add_field_data(vol, meta)
+    if path.suffix == ".vtm":
+        if result is None:
+            raise ValueError("a .vtm holds the interface too: pass the RollingResult")
+        iface = interface_points(result)
+        _add_field_data(iface, meta)
+        pv.MultiBlock({"volume": vol, "interface": iface}).save(path)
+    else:
+        vol.save(path)
+    return path
+
+
+def _axisymmetric_strain(v):
+    """Full tensors from axisymmetric Voigt ``(rr, zz, tt, rz)`` with engineering shear (x = r,
+    y = z, z = theta)."""
+    v = np.asarray(v, float).reshape(-1, 4)
+    return derived._tensor(v[:, 0], v[:, 1], v[:, 2], 0.5 * v[:, 3])
+
+
+def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
+    import pyvista as pv
+
+    mesh, basis, weights = ops.basis.mesh, ops.basis, ops.weights
+    nel = mesh.t.shape[1]
+    points = np.zeros((mesh.p.shape[1], 3))
+    points[:, :2] = mesh.p.T
+    cells = np.hstack([np.full((nel, 1), 4), mesh.t.T]).ravel()
+    vol = pv.UnstructuredGrid(cells, np.full(nel, pv.CellType.QUAD, dtype=np.uint8), points)
+    u = np.asarray(snap["u"])
+    disp = np.zeros((mesh.p.shape[1], 3))
+    disp[:, :2] = u[basis.nodal_dofs].T
+    vol.point_data["displacement"] = disp
+    vol.cell_data["strain"] = _cell_average(_axisymmetric_strain(snap["eps"]), weights, nel)
+    for tau, a in zip(material.relaxation_times, snap["alpha"], strict=True):
+        vol.cell_data[tau_name(tau)] = _cell_average(_axisymmetric_strain(a), weights, nel)
+    _name_components(vol)
+    pts = np.zeros((r.size, 3))
+    pts[:, 0] = r
+    iface = pv.PolyData(pts)
+    iface.lines = np.hstack([[r.size], np.arange(r.size)])
+    w = -u[top.ydofs[: r.size]]
+    iface.point_data["pressure"] = np.asarray(snap["pressure"], float)
+    iface.point_data["gap"] = w + r**2 / (2 * radius) - snap["approach"]
+    iface.point_data["contact"] = (np.asarray(snap["pressure"]) > 0).astype(np.uint8)
+    iface.point_data["depression"] = w
+    for ds in (vol, iface):
+        _add_field_data(ds, dict(meta, time=[snap["t"]], approach=[snap["approach"]]))
+    return pv.MultiBlock({"volume": vol, "interface": iface})
+
+
+def write_indentation(path, snapshots, ops, material, radius, load, r):
+    """Write the indentation ``snapshots`` (dicts with ``t``, ``u``, ``eps``, ``alpha``,
+    ``pressure`` at the candidate radii ``r``, ``approach``) as ``point_XXX.vtm`` files beside the
+    ``.pvd`` ``path``; returns the path."""
+    from xml.sax.saxutils import quoteattr
+
+    from .surface import top_surface
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    top = top_surface(ops.basis, axisymmetric=True)
+    meta = _material_data(material)
+    meta.update(load=[load], radius=[radius], units=[UNITS.replace("N/m (per unit length in z)", "N")])
+    entries = []
+    for k, snap in enumerate(snapshots):
+        name = f"{path.stem}_{k:03d}.vtm"
+        _indentation_snapshot(snap, ops, material, radius, np.asarray(r, float), top, meta).save(path.parent / name)
+        entries.append(f"  <DataSet timestep={quoteattr(repr(snap['t']))} file={quoteattr(name)}/>")
+    path.write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
+                    + "\n".join(entries) + "\n</Collection>\n</VTKFile>\n")
+    return path
+
+
+def _material_data(m):
+    return dict(E0=[m.E0], E_inf=[m.E_inf], nu=[m.nu], prony_moduli=np.asarray(m.moduli, float),
+                relaxation_times=np.asarray(m.relaxation_times, float), creep_times=np.asarray(m.creep_times, float))

@@ -8,7 +8,9 @@ import pytest
 from scipy import integrate
 
 from bem import Material, adaptive, surfaces
+from bem.adaptive import square, strip
 from bem.errors import InputError
+from bem.influence import love_corner
 from validation._bruteforce_line import strip_kernel
 from validation.hertz import line_contact, point_contact
 from validation.hunter import rolling_cylinder
@@ -42,7 +44,7 @@ def test_love_rectangle_every_quadrant(point):
     x, y = point
     ref = integrate.dblquad(lambda t, s: 1.0 / np.hypot(s - x, t - y), 0.0, 1.0, 0.0, 2.0,
                             epsabs=0, epsrel=1e-11)[0]
-    got = adaptive._rect(x, y, 0.0, 1.0, 0.0, 2.0, adaptive._love_corner)
+    got = square._rect(x, y, 0.0, 1.0, 0.0, 2.0, love_corner)
     assert got == pytest.approx(ref, rel=1e-8)  # quadrature of an integrable 1/r: ~1e-10
 
 
@@ -55,7 +57,7 @@ def test_creep_table_vs_quadrature(shift):
     for i, j in [(0, 0), (1, 0), (-1, 1), (3, 2), (-7, 0), (12, 12), (-12, 5)]:
         X, Y = i * h / 2, j * h / 2
         pts = [z for z in ((-h / 2 - X) / shift, (h / 2 - X) / shift) if z > 0]
-        ref = integrate.quad(lambda z: np.exp(-z) * adaptive._cell_influence(X + shift * z, Y, h), 0, 60,
+        ref = integrate.quad(lambda z, X=X, Y=Y: np.exp(-z) * square._cell_influence(X + shift * z, Y, h), 0, 60,
                              points=pts or None, limit=800, epsabs=0, epsrel=1e-12)[0]
         assert table[i + 2 * n, j] == pytest.approx(ref, rel=1e-9)
 
@@ -88,7 +90,7 @@ def test_strip_creep_no_cancellation_at_large_shift():
     x1, x2 = x[5] - mesh.spacing / 2, x[5] + mesh.spacing / 2
 
     def lam(xx):  # elastic strip coefficient, unit modulus without the factor
-        return -(adaptive._g0(x2 - xx, 1.0) - adaptive._g0(x1 - xx, 1.0))
+        return -(strip._g0(x2 - xx, 1.0) - strip._g0(x1 - xx, 1.0))
 
     # the integrand varies on every scale from the kinks (z ~ dx/shift ~ 1e-8) to 1: panels
     # geometric in z plus the kinks, each integrated by adaptive quadrature
@@ -235,13 +237,13 @@ def test_sphere_height_callable_matches_sampled():
 def test_mesh_refines_contact_and_covers_grid():
     load = 1.0
     s = sphere(SLS, load, 32, width=6.0)  # contact ~11 cells across: corners stay coarse
-    meshes = adaptive.adaptive_mesh(s, SLS, speed=0.0, load=load, levels=2)
+    res = adaptive.solve_adaptive(s, SLS, speed=0.0, load=load, levels=2)
+    meshes = res.meshes
     assert np.all(meshes[0].size == 4) and len(meshes) == 3
     assert [m.size.max() for m in meshes] == [4, 4, 4] and meshes[-1].size.min() == 1
     final = meshes[-1]
     labels = final.labels()
     assert np.bincount(labels.ravel()).tolist() == (final.size**2).tolist()  # exact tiling
-    res = adaptive.solve_adaptive(s, SLS, speed=0.0, load=load, levels=2)
     assert np.any(res.pressure > 0)
     assert np.all(final.to_fine(final.size)[res.pressure > 0] == 1)  # contact at the finest size
     assert len(final) < s.n**2
@@ -309,8 +311,9 @@ def test_rubber_profile_many_terms():
     # 30-term Prony series, E_inf/E0 = 1e4 (tests/conftest.py), cylinder near the loss peak:
     # converges, dissipates, and matches the uniform DC-FFT solver on the same grid to 1e-3
     # (the adaptive mesh coarsens only far elements; both solve the same collocation)
-    import bem
     from conftest import make_prony30
+
+    import bem
 
     rubber = make_prony30()
     load = 1000.0

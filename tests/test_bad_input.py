@@ -334,7 +334,7 @@ def test_interrupted_sweep_leaves_valid_json_with_finished_points(tmp_path, monk
     from viscobem_cli import scene as scenes
 
     scene = scenes.parse(GOOD_SCENE.replace("speeds = [0.001]", "speeds = [0.001, 0.002, 0.003]"))
-    real = bem.solve
+    real = bem.sliding.solve  # the solve that bem.sweep calls
     calls = []
 
     def interrupted(*args, **kwargs):
@@ -343,7 +343,7 @@ def test_interrupted_sweep_leaves_valid_json_with_finished_points(tmp_path, monk
             raise KeyboardInterrupt
         return real(*args, **kwargs)
 
-    monkeypatch.setattr("bem.solve", interrupted)
+    monkeypatch.setattr("bem.sliding.solve", interrupted)
     with pytest.raises(KeyboardInterrupt):
         study.run_scene(scene, tmp_path, progress=False)
     rec = json.loads((tmp_path / "results.json").read_text())

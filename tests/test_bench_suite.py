@@ -1,45 +1,50 @@
-"""The benchmark suite's own logic (no solves): Pareto front, exponent fit, README update."""
+"""The benchmark suite's own logic (no solves): Pareto front, exponent fit, outputs only in --out."""
+from pathlib import Path
+
 import numpy as np
 import pytest
 
-from benchmarks import suite
+from viscobem_bench import cases, report, scaling, suite
 
 
 def test_pareto_front_keeps_only_undominated_points():
     pts = [{"time": 1.0, "error": 1e-2}, {"time": 2.0, "error": 1e-3}, {"time": 3.0, "error": 5e-3},
            {"time": 0.5, "error": 5e-2}, {"time": 4.0, "error": None}, {"time": 5.0, "error": 1e-4}]
-    assert suite.pareto_front(pts) == [3, 0, 1, 5]  # sorted by time; 2 is dominated by 1
+    assert report.pareto_front(pts) == [3, 0, 1, 5]  # sorted by time; 2 is dominated by 1
 
 
 def test_fit_exponent_recovers_n_log_n():
     n = np.array([64, 128, 256, 512, 1024])
     N = n.astype(float) ** 2
-    k, k_nlogn = suite._fit_exponent(n, 3e-8 * N * np.log(N))
+    k, k_nlogn = scaling._fit_exponent(n, 3e-8 * N * np.log(N))
     assert k_nlogn == pytest.approx(0.0, abs=1e-12)  # exact N log N data
     assert 1.0 < k < 1.15  # log N adds ~0.1 to the apparent power over this range
-    assert suite._fit_exponent(n, 1e-9 * N**1.5)[0] == pytest.approx(1.5, abs=1e-12)
+    assert scaling._fit_exponent(n, 1e-9 * N**1.5)[0] == pytest.approx(1.5, abs=1e-12)
 
 
-def test_readme_table_replaced_between_markers_only(tmp_path):
-    path = tmp_path / "README.md"
-    head = "# viscobem\n\nfirst lines stay\n"
-    path.write_text(head + f"\n{suite.README_BEGIN}\nold table\n{suite.README_END}\n\ntail\n")
-    suite.update_readme(path, "| new | table |")
-    text = path.read_text()
-    assert text.startswith(head) and text.endswith("\n\ntail\n")
-    assert "old table" not in text and f"{suite.README_BEGIN}\n| new | table |\n{suite.README_END}" in text
-    suite.update_readme(path, "| newer |")  # idempotent structure: one block
-    assert path.read_text().count(suite.README_BEGIN) == 1 and "| new | table |" not in path.read_text()
+def test_suite_writes_only_in_its_output_folder(tmp_path, monkeypatch):
+    """The driver (no solver selected, no scaling or skipping) writes bench.json and bench.md in
+    ``out_dir`` and nothing in the working directory or the source checkout (its README)."""
+    readme = Path(suite.__file__).resolve().parents[1] / "README.md"
+    before = readme.read_bytes() if readme.is_file() else None
+    cwd = tmp_path / "cwd"
+    cwd.mkdir()
+    monkeypatch.chdir(cwd)
+    result = suite.run(quick=True, out_dir=tmp_path / "out", solvers=["none"], scaling=False, skip=False,
+                       echo=lambda *a: None)
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["bench.json", "bench.md"]
+    assert result["files"] == ["bench.json", "bench.md"] and not any(cwd.iterdir())
+    assert (readme.read_bytes() if readme.is_file() else None) == before
 
 
 def test_rough_heights_are_one_surface_at_every_size():
-    h64, h128 = suite.rough_heights(64), suite.rough_heights(128)
+    h64, h128 = cases.rough_heights(64), cases.rough_heights(128)
     assert np.allclose(h128[::2, ::2], h64, rtol=0, atol=1e-12 * np.abs(h64).max())  # exact resampling
 
 
 def test_registry_entries_are_complete():
-    assert {"periodic-westergaard", "periodic-rough-viscoelastic", "fem-hunter"} <= set(suite.REGISTRY)
-    for entry in suite.REGISTRY.values():
+    assert {"periodic-westergaard", "periodic-rough-viscoelastic", "fem-hunter"} <= set(cases.REGISTRY)
+    for entry in cases.REGISTRY.values():
         assert entry.knobs and callable(entry.measure)
         assert list(entry.groups(True))  # a quick run has work in every entry
 
@@ -51,7 +56,7 @@ def test_rubber_speeds_benchmark_runs_from_the_cli(tmp_path):
     products against 62)."""
     import json
 
-    from benchmarks import rubber_speeds
+    from viscobem_bench import rubber_speeds
     from viscobem_cli.main import main
 
     assert main(["bench", "rubber_speeds", "--quick", "--out", str(tmp_path)]) == 0

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 import bem
-from bem import contact
+from bem.contact import ContactOptions
+from bem.contact_start import coarse_start, prolong
 from bem.periodic import PeriodicHalfSpace
 
 
@@ -12,7 +13,7 @@ from bem.periodic import PeriodicHalfSpace
 def test_prolong_keeps_the_coarse_values_the_mean_and_the_sign(shape):
     rng = np.random.default_rng(0)
     p = np.maximum(rng.standard_normal(shape), 0.0)
-    fine = contact._prolong(p)
+    fine = prolong(p)
     assert fine.shape == tuple(2 * n for n in shape)
     np.testing.assert_array_equal(fine[tuple(slice(0, None, 2) for _ in shape)], p)
     assert fine.mean() == pytest.approx(p.mean(), rel=1e-14)
@@ -24,25 +25,30 @@ def test_prolong_keeps_the_coarse_values_the_mean_and_the_sign(shape):
 
 def test_no_coarse_start_on_odd_or_small_grids():
     material = bem.Material.elastic(1e7)
+    min_size = ContactOptions().coarsen_min_size
+
+    def never(*args):
+        raise AssertionError("no coarse solve expected")
+
     odd = PeriodicHalfSpace((2**18 + 1,), 0.01, material, 0.0)
-    assert contact._coarse_start(odd, np.zeros(odd.shape), {}) == (None, 0.0, None)
+    assert coarse_start(odd, np.zeros(odd.shape), never, min_size) == (None, 0.0, None)
     small = PeriodicHalfSpace((256, 256), 0.01, material, 0.0)
-    assert small.size < contact.COARSEN_MIN_SIZE
-    assert contact._coarse_start(small, np.zeros(small.shape), {}) == (None, 0.0, None)
+    assert small.size < min_size
+    assert coarse_start(small, np.zeros(small.shape), never, min_size) == (None, 0.0, None)
 
 
 @pytest.mark.parametrize("material", [
     bem.Material.elastic(1e7), bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)])
-def test_coarse_start_changes_nothing_but_the_cost(material, monkeypatch):
+def test_coarse_start_changes_nothing_but_the_cost(material):
     """512² at ~10-20 % contact, converged to rtol 1e-10 with and without the coarse start:
     the same pressure (to ~1e-8, the tolerance) and fewer products with it (elastic on the
     benchmark surface: 140 -> 99 at 512², 184 -> 108 at 1024²)."""
-    assert 512**2 >= contact.COARSEN_MIN_SIZE
+    assert 512**2 >= ContactOptions().coarsen_min_size
     s = bem.surfaces.self_affine(512, 0.01, hurst=0.8, scales=64, rms_height=2e-5, seed=3)
     out = {}
     for flag in (False, True):
-        monkeypatch.setattr(contact, "COARSEN", flag)
-        out[flag] = bem.solve(s, material, speed=0.01, load=3.0, rtol=1e-10)
+        out[flag] = bem.solve(s, material, speed=0.01, load=3.0, rtol=1e-10,
+                              contact_options=ContactOptions(coarsen=flag))
     plain, nested = out[False], out[True]
     assert 0.05 < nested.contact_fraction < 0.3
     err = np.linalg.norm(nested.pressure - plain.pressure) / np.linalg.norm(plain.pressure)

@@ -114,7 +114,7 @@ def test_dissipation_balance_and_signs():
     r = rolling_cylinder(m, radius=R, load=P, speed=speed_for(m, 3.0), resolution=4, grading=1.5)
     assert r.friction > 0
     assert r.friction_dissipation == pytest.approx(r.friction, rel=0.01)
-    assert r.dissipated_power == pytest.approx(r.friction * P * r.speed)
+    assert r.dissipated_power == pytest.approx(r.friction * P * r.speed, rel=0.01)  # field vs moment
     assert r.leading_edge > -r.trailing_edge  # contact shifts toward the leading edge
     assert r.x[np.argmax(r.pressure)] > 0  # so does the peak
     w = np.diff(r.x)

@@ -1,5 +1,5 @@
 """The line preconditioner of strongly non-symmetric periodic operators
-(bem.periodic.PeriodicHalfSpace.line_preconditioner, used by bem.contact).
+(bem.line_preconditioner, used by the contact solver's inner solves).
 
 The steady-sliding symbol factors as ``a_q = green(|q|) J(-q_x v)``: ``A = G C`` with ``G``
 the elastic operator (unit modulus) and ``C`` the creep compliance, a convolution along x.
@@ -10,7 +10,10 @@ import numpy as np
 import pytest
 
 import bem
-from bem import contact, periodic
+import bem.line_preconditioner as line_module
+from bem import contact_inner
+from bem.contact import ContactOptions
+from bem.line_preconditioner import line_preconditioner as lines_of
 from bem.periodic import PeriodicHalfSpace
 from conftest import dense_operator
 
@@ -34,7 +37,7 @@ def _dense_creep(op):
 
 def test_symbol_is_elastic_times_creep_along_x():
     op = PeriodicHalfSpace((12, 10), L, RUBBER, FAST)
-    assert contact._max_phase(op) > np.pi / 4  # strongly non-symmetric: the case it serves
+    assert contact_inner.max_phase(op) > np.pi / 4  # strongly non-symmetric: the case it serves
     G = dense_operator(PeriodicHalfSpace(op.shape, L, bem.Material.elastic(1.0, nu=RUBBER.nu), 0.0))
     A = dense_operator(op)
     np.testing.assert_allclose(A, G @ _dense_creep(op), rtol=0, atol=1e-12 * np.abs(A).max())
@@ -55,17 +58,17 @@ def test_line_preconditioner_is_restricted_creep_inverse_after_elastic_inverse(s
     full[idx] = r
     w = elastic.pressure_from_displacement(full.reshape(shape)).ravel()[idx]  # R G^-1 R^T r
     expected = np.linalg.solve(C[np.ix_(idx, idx)], w)
-    # the line inverses are stored in LINE_DTYPE: exact up to its rounding times the
+    # the line inverses are stored in float32: exact up to its rounding times the
     # condition number of the line systems
-    tol = 10 * np.finfo(periodic.LINE_DTYPE).eps * max(
+    tol = 10 * np.finfo(np.float32).eps * max(
         np.linalg.cond(C[np.ix_(line, line)]) for line in
         (idx[idx % shape[1] == y] for y in range(shape[1])) if line.size)
     built = []  # lines whose dense matrix is formed and inverted, per call
-    line_matrices = PeriodicHalfSpace._line_matrices
-    monkeypatch.setattr(PeriodicHalfSpace, "_line_matrices", staticmethod(
-        lambda kernel, x, valid: built.append(len(x)) or line_matrices(kernel, x, valid)))
+    line_matrices = line_module._line_matrices
+    monkeypatch.setattr(line_module, "_line_matrices",
+                        lambda kernel, x, valid: built.append(len(x)) or line_matrices(kernel, x, valid))
     cache = {}
-    got = op.line_preconditioner(contact_set, cache=cache)(r)
+    got = lines_of(op, contact_set, cache=cache)(r)
     np.testing.assert_allclose(got, expected, rtol=tol, atol=tol * np.abs(expected).max())
     assert sum(built) == shape[1] - 1  # every line with contact
     # a second call with one line changed reuses the other lines' inverses and stays exact
@@ -77,31 +80,29 @@ def test_line_preconditioner_is_restricted_creep_inverse_after_elastic_inverse(s
     full[:] = 0.0
     full[idx] = r
     w = elastic.pressure_from_displacement(full.reshape(shape)).ravel()[idx]
-    got = op.line_preconditioner(contact_set, cache=cache)(r)
+    got = lines_of(op, contact_set, cache=cache)(r)
     expected = np.linalg.solve(C[np.ix_(idx, idx)], w)
     np.testing.assert_allclose(got, expected, rtol=tol, atol=tol * np.abs(expected).max())
     assert sum(built) == 1  # line y = 0 only
     assert all(np.array_equal(cache[y][1], kept[y]) for y in kept if y != 0)
     # no line preconditioner where it does not apply, or where it would exceed its memory budget
-    assert op.symmetric_part().line_preconditioner(contact_set) is None
-    assert PeriodicHalfSpace((16,), L, RUBBER, FAST).line_preconditioner(np.ones(16, bool)) is None
-    monkeypatch.setattr(periodic, "LINE_BUDGET", 0)
-    assert op.line_preconditioner(contact_set) is None
+    assert lines_of(op.symmetric_part(), contact_set) is None
+    assert lines_of(PeriodicHalfSpace((16,), L, RUBBER, FAST), np.ones(16, bool)) is None
+    assert lines_of(op, contact_set, budget=0) is None
 
 
 def test_line_preconditioner_threads_change_nothing(monkeypatch):
-    """Its batches (``LINE_CHUNK`` lines each) run on the FFT's cores; one core or two give
+    """Its batches (``chunk`` lines each) run on the FFT's cores; one core or two give
     the same numbers to the last bit."""
-    from bem import fft
-    shape = (24, 3 * periodic.LINE_CHUNK + 5)  # four batches of lines
+    shape = (24, 3 * 32 + 5)  # four batches of 32 lines (the default chunk)
     op = PeriodicHalfSpace(shape, L, RUBBER, FAST)
     rng = np.random.default_rng(5)
     contact_set = rng.random(shape) < 0.5
     r = rng.standard_normal(np.count_nonzero(contact_set))
     results = []
     for workers in (1, 2):
-        monkeypatch.setattr(fft, "WORKERS", workers)
-        results.append(op.line_preconditioner(contact_set)(r))
+        with bem.use_threads(workers):
+            results.append(lines_of(op, contact_set)(r))
     np.testing.assert_array_equal(results[0], results[1])
     assert np.all(np.isfinite(results[0])) and np.any(results[0] != 0)
 
@@ -111,7 +112,7 @@ def _rubber_problem(n=128, speed=RUBBER_SPEED):
     return s, dict(speed=speed, load=0.9)
 
 
-def test_line_preconditioner_same_answer_fewer_products(monkeypatch):
+def test_line_preconditioner_same_answer_fewer_products():
     """The benchmark's 20-term rubber (E_inf/E0 = 1000, xi = 1e-2) on a 128² rough surface at
     ~10 % contact, to rtol 1e-10 with and without the line preconditioner: the same pressure
     (to ~1e-8, the tolerance) and fewer products with it (here 464 -> 279; on the benchmark
@@ -119,8 +120,7 @@ def test_line_preconditioner_same_answer_fewer_products(monkeypatch):
     s, kw = _rubber_problem()
     out = {}
     for flag in (False, True):
-        monkeypatch.setattr(contact, "LINES", flag)
-        out[flag] = bem.solve(s, RUBBER, rtol=1e-10, maxiter=1000, **kw)
+        out[flag] = bem.solve(s, RUBBER, contact_options=ContactOptions(lines=flag), rtol=1e-10, maxiter=1000, **kw)
     plain, lines = out[False], out[True]
     assert 0.05 < lines.contact_fraction < 0.2
     err = np.linalg.norm(lines.pressure - plain.pressure) / np.linalg.norm(plain.pressure)
@@ -129,13 +129,12 @@ def test_line_preconditioner_same_answer_fewer_products(monkeypatch):
     assert lines.matvecs < 0.8 * plain.matvecs
 
 
-def test_line_attempt_that_stalls_falls_back(monkeypatch):
+def test_line_attempt_that_stalls_falls_back():
     """A line-preconditioned attempt whose residual stops reaching new lows (here at once,
     RESIDUAL_STALL = 0) hands over to the unpreconditioned careful solve, which converges;
     the message and the counts include both attempts."""
     s, kw = _rubber_problem(32, FAST)
     reference = bem.solve(s, RUBBER, **kw)
-    monkeypatch.setattr(contact, "RESIDUAL_STALL", 0)
-    r = bem.solve(s, RUBBER, **kw)
+    r = bem.solve(s, RUBBER, contact_options=ContactOptions(residual_stall=0), **kw)
     assert r.success and "after a first attempt of 1 " in r.message
     np.testing.assert_allclose(r.pressure, reference.pressure, rtol=0, atol=1e-6 * reference.pressure.max())

@@ -1,6 +1,6 @@
 """Property-based tests (hypothesis) of the invariants of steady viscoelastic sliding.
 
-- the operator is linear and agrees with an independent one (:mod:`_reference`);
+- the operator is linear and agrees with an independent one (:mod:`validation.periodic_exact`);
 - dissipation ``-∫ p du/dx dA >= 0`` for every pressure field, positive or not;
 - load balance of the contact solution, to round-off;
 - elastic limits: ``v -> 0`` is the elastic solid ``E0``, ``v -> inf`` the glassy ``E_inf``
@@ -19,10 +19,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-import _reference as ref
 import bem
 from bem.contact import solve_contact
 from bem.periodic import PeriodicHalfSpace
+from validation import periodic_exact as ref
 
 L = 0.01
 FEW = settings(max_examples=12, deadline=None, derandomize=True,
@@ -52,7 +52,7 @@ def rough(shape, seed, hurst=0.8):
 
 
 def full_contact_load(surface, m, speed):
-    """Load (N or N/m) at which the cell just closes (see tests/_reference.py)."""
+    """Load (N or N/m) at which the cell just closes (see validation/periodic_exact.py)."""
     h = surface.heights
     a = ref.symbol(h.shape, L, m, speed)
     return float(-ref.full_contact_pressure(h - h.max(), a).min()) * L**h.ndim

@@ -2,7 +2,7 @@
 
 Run it separately: ``pytest -m stress`` (excluded from the default run; about 10 min on
 2 cores). Every case either converges to the stated residual with a physically sane answer,
-checked against an *independent* operator (:mod:`_reference`: numpy FFTs and the relaxation
+checked against an *independent* operator (:mod:`validation.periodic_exact`: numpy FFTs and the relaxation
 series), or raises :class:`bem.errors.ConvergenceError` with ``success=False`` — never a
 silent wrong answer. The ranges, each swept on its own around a middle case:
 
@@ -12,6 +12,17 @@ silent wrong answer. The ranges, each swept on its own around a middle case:
 - loads from one contact spot (1e-6 of the full-contact load) to full contact (3x);
 - Hurst exponents 0.2 to 1.0; 1 to 1024 scales; grids that are not powers of two;
 - Poisson ratios 0 to 0.5.
+
+Expected outcomes. ``tests/stress_expected.json`` holds, per case (its test id), the outcome
+(converged, or ConvergenceError for the known hard cases) and the values of its checks.
+A case fails on a new ConvergenceError, and a converged case fails when its checks degrade:
+friction off its stored value by more than ``FRICTION_RTOL`` (relative) plus
+``FRICTION_ATOL``, the independent residual above ``10 rtol``, the contact fraction off by
+more than ``CONTACT_ATOL``, or more than ``MATVEC_FACTOR`` times the stored operator products
+plus ``MATVEC_SLACK``. A case missing from the file fails too. A known failure that now
+converges passes (and is reported). Regenerate the file with
+``VISCOBEM_STRESS_UPDATE=1 pytest -m stress`` after a deliberate change, and say why in the
+commit.
 
 Grids are 32² (a few 33²–64²) and 1-D profiles of 255–2048 points. Each case's outcome,
 iterations, operator products, wall time and the operator's conditioning (spread of
@@ -28,15 +39,69 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import _reference as ref
 import bem
 from bem.errors import ConvergenceError
+from validation import periodic_exact as ref
 
 pytestmark = pytest.mark.stress
 
 L = 0.01  # m, cell side
 RTOL = 1e-8  # the solver's default tolerance on the complementarity residual
 RECORDS = []
+
+EXPECTED_PATH = Path(__file__).with_name("stress_expected.json")
+UPDATE = os.environ.get("VISCOBEM_STRESS_UPDATE") == "1"
+EXPECTED = {} if UPDATE or not EXPECTED_PATH.exists() else json.loads(EXPECTED_PATH.read_text())["cases"]
+# The solve's rtol (1e-8) bounds the pressure error by about 10 rtol; the friction, a quadratic
+# form of the pressure, moves by the same order between solver versions: 1e-5 relative leaves a
+# factor 100 over that, and a material 2 % off moves the friction by far more (checked).
+FRICTION_RTOL, FRICTION_ATOL = 1e-5, 1e-12
+CONTACT_ATOL = 0.01  # cells at the contact edge may flip with the iterate's path: 1 % of the cell
+MATVEC_FACTOR, MATVEC_SLACK = 1.5, 20  # operator products: a 50 % rise is a regression
+CURRENT = {"id": None}
+
+
+@pytest.fixture(autouse=True)
+def _case_id(request):
+    CURRENT["id"] = request.node.name
+    yield
+    CURRENT["id"] = None
+
+
+def _expected():
+    """The stored outcome of the running case (fails if there is none)."""
+    if UPDATE:
+        return None
+    exp = EXPECTED.get(CURRENT["id"])
+    if exp is None:
+        pytest.fail(f"{CURRENT['id']}: no expected outcome in {EXPECTED_PATH.name}; regenerate it with "
+                    "VISCOBEM_STRESS_UPDATE=1 pytest -m stress")
+    return exp
+
+
+def _compare(record):
+    """Fail on a new ConvergenceError or on checks worse than the stored ones."""
+    exp = _expected()
+    if exp is None:
+        return
+    if record["outcome"] == "raised":
+        if exp["outcome"] == "converged":
+            pytest.fail(f"new ConvergenceError (stored: converged in {exp['matvecs']} products): "
+                        f"{record['message']}")
+        return
+    if exp["outcome"] == "raised":
+        record["note"] = "converges now; stored as a ConvergenceError"
+        return
+    bad = []
+    if abs(record["friction"] - exp["friction"]) > FRICTION_RTOL * abs(exp["friction"]) + FRICTION_ATOL:
+        bad.append(f"friction {record['friction']:.10g}, stored {exp['friction']:.10g}")
+    if record["independent_residual"] > 10 * record["rtol"]:
+        bad.append(f"independent residual {record['independent_residual']:.2e} > 10 rtol")
+    if abs(record["contact_fraction"] - exp["contact_fraction"]) > CONTACT_ATOL:
+        bad.append(f"contact fraction {record['contact_fraction']:.4f}, stored {exp['contact_fraction']:.4f}")
+    if record["matvecs"] > MATVEC_FACTOR * exp["matvecs"] + MATVEC_SLACK:
+        bad.append(f"{record['matvecs']} operator products, stored {exp['matvecs']}")
+    assert not bad, f"{CURRENT['id']} degraded: " + "; ".join(bad)
 
 
 # ---------------------------------------------------------------- materials and surfaces
@@ -74,7 +139,7 @@ def run_case(case, surface, material, xi, level, *, rtol=RTOL):
     p_fc = ref.full_contact_pressure(h - h.max(), a)
     load = level * float(-p_fc.min()) * area  # level 1 is the onset of full contact
     cond, phase = _conditioning(a)
-    record = {"case": case, "shape": "x".join(map(str, h.shape)), "E_inf/E0": material.E_inf / material.E0,
+    record = {"id": CURRENT["id"], "case": case, "shape": "x".join(map(str, h.shape)), "E_inf/E0": material.E_inf / material.E0,
               "terms": int(material.moduli.size), "nu": material.nu, "xi": xi, "speed": speed,
               "load_level": level, "load": load, "rtol": rtol, "symbol_spread": cond,
               "max_phase_deg": phase}
@@ -90,6 +155,7 @@ def run_case(case, surface, material, xi, level, *, rtol=RTOL):
         # the documented failure: it says so, and the result it carries is marked failed
         assert err.result is None or not err.result.success
         assert "not converged" in str(err)
+        _compare(record)
         return None
     record.update(outcome="converged", wall_time=time.perf_counter() - t0, iterations=res.iterations,
                   matvecs=res.matvecs, residual=res.residual, contact_fraction=res.contact_fraction,
@@ -98,6 +164,7 @@ def run_case(case, surface, material, xi, level, *, rtol=RTOL):
     RECORDS.append(record)
     _check_sane(res, surface, material, speed, load, a, p_fc, rtol, record)
     record["checks"] = "passed"
+    _compare(record)
     return res
 
 
@@ -258,5 +325,28 @@ def _summary(tmp_path_factory):
         writer = csv.DictWriter(f, fieldnames=keys)
         writer.writeheader()
         writer.writerows(RECORDS)
+    if UPDATE:
+        _write_expected()
     print(f"\nstress summary: {len(RECORDS)} cases, {len(converged)} converged, {len(raised)} raised; "
           f"written to {path} and {path.with_suffix('.csv')}")
+
+
+def _write_expected():
+    """Store every case's outcome and checks as the expected ones (``VISCOBEM_STRESS_UPDATE=1``)."""
+    import platform
+    import subprocess
+
+    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                          cwd=Path(__file__).parent).stdout.strip()
+    keep = ("outcome", "iterations", "matvecs", "residual", "contact_fraction", "friction",
+            "friction_independent", "independent_residual", "checks")
+    cases = {r["id"]: {k: r[k] for k in keep if k in r} for r in RECORDS if r.get("id")}
+    if EXPECTED_PATH.exists():  # a partial run (-k) updates only the cases it ran
+        cases = {**json.loads(EXPECTED_PATH.read_text())["cases"], **cases}
+    EXPECTED_PATH.write_text(json.dumps({
+        "note": "Expected outcomes of tests/test_stress.py, made by running `VISCOBEM_STRESS_UPDATE=1 "
+                f"pytest -m stress` at git {head} ({time.strftime('%Y-%m-%d', time.gmtime())}, Python "
+                f"{platform.python_version()}, numpy {np.__version__}). Each case must end as stored "
+                "(a stored ConvergenceError may now converge) with its checks within the tolerances "
+                "stated in tests/test_stress.py.",
+        "cases": dict(sorted(cases.items()))}, indent=1, default=float) + "\n")

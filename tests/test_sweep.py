@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-import bem
+import bem.sliding
 from bem.errors import InputError
 from viscobem_cli import scene as scenes
 from viscobem_cli.study import fold_material, run_scene
@@ -64,7 +64,7 @@ def test_ensemble_reports_mean_and_standard_error(reference):
 
 
 def test_interrupted_sweep_resumes_where_it_stopped(tmp_path, monkeypatch, reference):
-    real_solve, calls = bem.solve, []
+    real_solve, calls = bem.sliding.solve, []  # the solve that bem.sweep calls
 
     def interrupted(*args, **kw):
         if len(calls) == 5:
@@ -72,20 +72,21 @@ def test_interrupted_sweep_resumes_where_it_stopped(tmp_path, monkeypatch, refer
         calls.append(kw["speed"])
         return real_solve(*args, **kw)
 
-    monkeypatch.setattr(bem, "solve", interrupted)
+    monkeypatch.setattr(bem.sliding, "solve", interrupted)
     with pytest.raises(KeyboardInterrupt):
         run_scene(_scene(), tmp_path, progress=False)
     partial = json.loads((tmp_path / "results.json").read_text())
     assert not partial["complete"] and len(partial["points"]) == 5  # every finished point is on disk
     assert len(list((tmp_path / "points").glob("*.json"))) == 5
     calls.clear()
-    monkeypatch.setattr(bem, "solve", lambda *a, **kw: (calls.append(kw["speed"]), real_solve(*a, **kw))[1])
+    monkeypatch.setattr(bem.sliding, "solve", lambda *a, **kw: (calls.append(kw["speed"]), real_solve(*a, **kw))[1])
     rec = run_scene(_scene(), tmp_path, progress=False)
     assert rec["resumed_points"] == 5 and len(calls) == 3  # only the 3 missing points were solved
     assert rec["complete"] and rec["all_converged"]
     # same answers as an uninterrupted run, to the solver tolerance (different warm starts)
     for key, (mu, a) in _numbers(reference).items():
         assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
+        assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
         assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
     # a changed study in the same folder does not reuse the old points
     rec2 = run_scene(_scene(**{"load = 0.3": "load = 0.35"}), tmp_path, progress=False)
@@ -98,6 +99,7 @@ def test_process_pool_gives_the_same_points(tmp_path, reference):
     for key, (mu, a) in _numbers(reference).items():
         # warm starts differ between chunks: equal to the complementarity tolerance
         assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
+        assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
 
 
 def test_dask_local_cluster_gives_the_same_points(tmp_path, reference):
@@ -110,6 +112,7 @@ def test_dask_local_cluster_gives_the_same_points(tmp_path, reference):
     assert rec["solver"]["scheduler"] == cluster.scheduler_address and rec["all_converged"]
     for key, (mu, a) in _numbers(reference).items():
         assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
+        assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
 
 
 def test_scene_without_anisotropy_does_not_compute_it(tmp_path, monkeypatch):
@@ -228,3 +231,82 @@ def test_command_line_workers_must_be_positive(tmp_path, capsys):
     path.write_text(BASE)
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--workers", "0"]) == 2
     assert "--workers" in capsys.readouterr().err
+
+
+# ----------------------------------------------------------------------------- one sweep
+def test_cli_points_are_the_friction_curve_of_the_api(tmp_path):
+    """The command line's chunks and bem.friction_curve run the same warm-started loop: the
+    same surface, material and speeds give the same numbers to round-off."""
+    s = _scene(**{"realisations = 2": "realisations = 1"})
+    rec = run_scene(s, tmp_path, progress=False)
+    curve = bem.friction_curve(s.surface, s.material, speeds=s.speeds, load=0.3, rtol=1e-9)
+    assert np.allclose(rec["friction_curve"]["friction"], curve.friction, rtol=1e-12, atol=0)
+    assert rec["friction_curve"]["iterations"] == curve.iterations.astype(int).tolist()
+
+
+def test_friction_curve_over_several_loads():
+    s = _scene(**{"realisations = 2": "realisations = 1"})
+    speeds = s.speeds[:3]
+    seen = []
+    curves = bem.friction_curve(s.surface, s.material, speeds=speeds, load=[0.2, 0.4], rtol=1e-9,
+                                callback=lambda k, v, res, msg: seen.append(k))
+    assert [c.load for c in curves] == [0.2, 0.4] and sorted(seen) == list(range(6))
+    for c, load in zip(curves, (0.2, 0.4)):
+        single = bem.friction_curve(s.surface, s.material, speeds=speeds, load=load, rtol=1e-9)
+        assert np.array_equal(c.friction, single.friction) and c.all_converged
+    assert np.all(curves[1].contact_fraction > curves[0].contact_fraction)
+    assert "FrictionCurve(load=0.2, 3 speeds" in repr(curves[0])
+    with pytest.raises(InputError, match="load"):
+        bem.friction_curve(s.surface, s.material, speeds=speeds, load=[0.2, -1.0])
+
+
+# ----------------------------------------------------------------------------- kill -9 and resume
+def test_killed_sweep_resumes_with_identical_results(tmp_path):
+    """``kill -9`` in the middle of ``viscobem run``: the folder keeps whole point files only,
+    and a rerun solves just the missing points, giving the uninterrupted run's numbers."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from viscobem_cli.main import main
+
+    text = BASE.replace("n = 32", "n = 64").replace("scales = 8", "scales = 16").replace(
+        "realisations = 2", "realisations = 1").replace("num = 4", "num = 12").replace(
+        "fields = false", "fields = true")
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    out = tmp_path / "killed"
+    proc = subprocess.Popen([sys.executable, "-m", "viscobem_cli.main", "run", str(path), "--out", str(out),
+                             "--no-progress"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while len(list((out / "points").glob("*.json"))) < 3 and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.02)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    done = len(list((out / "points").glob("*.json")))
+    assert 3 <= done < 12, f"{done} points written before the kill"
+    partial = json.loads((out / "results.json").read_text())  # written at the start: valid JSON
+    assert not partial["complete"]
+    assert main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    resumed = json.loads((out / "results.json").read_text())
+    assert resumed["complete"] and resumed["resumed_points"] >= done
+    assert not list(out.rglob(".*.tmp"))
+    assert main(["run", str(path), "--out", str(tmp_path / "whole"), "--no-progress"]) == 0
+    whole = json.loads((tmp_path / "whole" / "results.json").read_text())
+    for a, b in zip(resumed["points"], whole["points"]):
+        # a resumed point may start cold instead of warm: equal to the solver tolerance
+        assert a["friction"] == pytest.approx(b["friction"], rel=1e-6)
+        assert a["contact_fraction"] == pytest.approx(b["contact_fraction"], abs=1e-12)
+    with np.load(out / "fields.npz") as f, np.load(tmp_path / "whole" / "fields.npz") as g:
+        assert f["pressure"].shape == g["pressure"].shape == (12, 64, 64)
+        assert np.allclose(f["pressure"], g["pressure"], rtol=0, atol=1e-5 * g["pressure"].max())
+
+
+@pytest.mark.parametrize("speeds", ["0.01", ["0.01", "0.1"], [True, False], [-1.0, 0.1], [[0.1, 0.2]]])
+def test_friction_curve_wants_speeds_as_numbers(speeds):
+    s = _scene(**{"realisations = 2": "realisations = 1"})
+    with pytest.raises(InputError, match="speeds must be") as err:
+        bem.friction_curve(s.surface, s.material, speeds=speeds, load=0.3)
+    assert "np.float64" not in str(err.value)

@@ -1,41 +1,64 @@
-"""Independent references for periodic cells: the exact full-contact Fourier solution and a
-dense direct solve of the elastic contact problem.
+"""The independent reference operator of periodic cells, the exact full-contact Fourier
+solution, and a dense direct solve of the elastic contact problem.
 
-Written with ``numpy.fft`` on the full spectrum and an explicit dense matrix, sharing no
-code with :mod:`bem` (only the material's creep series is read), so that agreement with the
-BEM is a check of its FFT conventions, symbol and contact solver.
+Written with ``numpy.fft`` on the full complex spectrum and the material's *relaxation*
+series ``1 / E(w)``, sharing no code with :mod:`bem` (neither :mod:`bem.fft`,
+:mod:`bem.periodic` nor the creep series the solver uses), so that agreement with the BEM
+checks its FFT layout, Nyquist handling, Prony/creep interconversion and contact solver.
 
-Conventions as in SPEC §2.2: ``u_q = 2 (1 - nu^2) / |q| J(-q_x v) p_q`` for ``q != 0``,
-``J(w) = 1/E_inf + sum_k C_k / (1 + i w lambda_k)``; heights positive toward the solid,
-sliding in ``+x`` (axis 0). On even grids the ``x``-Nyquist mode keeps only the real part of
-``J`` (SPEC §7), so that the operator is real.
+Conventions as in SPEC §2.2: ``u_q = 2 (1 - nu^2) / |q| / E(-q_x v) p_q`` for ``q != 0``;
+heights positive toward the solid, sliding in ``+x`` (axis 0). The symbol is made
+Hermitian, ``a_q -> (a_q + conj(a_-q)) / 2`` with ``-q`` taken on the grid: this changes only
+the x-Nyquist modes of even grids, whose symbol becomes its real part (SPEC §7), and makes
+``1 / a_q`` the exact inverse of the real operator.
 """
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["full_contact", "influence_matrix", "murty_lcp", "dense_contact"]
+__all__ = ["wavevectors", "symbol", "displacement", "full_contact_pressure", "x_derivative", "full_contact",
+           "influence_matrix", "murty_lcp", "dense_contact"]
 
 
-def _wavevectors(shape, length):
+def wavevectors(shape, length):
+    """Full-spectrum wavevector components (rad/m), broadcastable, axis 0 = x."""
     axes = [2 * np.pi * np.fft.fftfreq(n, d=length / n) for n in shape]
-    return np.meshgrid(*axes, indexing="ij")
+    return np.meshgrid(*axes, indexing="ij", sparse=True)
 
 
-def _symbol(shape, length, material, speed):
-    """Full-spectrum ``a_q`` (m/Pa), 0 at ``q = 0``."""
-    q = _wavevectors(shape, length)
+def symbol(shape, length, material, speed):
+    """``a_q`` (m/Pa) on the full spectrum, Hermitian; zero at ``q = 0``."""
+    q = wavevectors(shape, length)
     qn = np.sqrt(sum(c**2 for c in q))
-    qx = q[0]
-    w = -qx * speed
-    comp = 1.0 / material.E_inf + sum(c / (1 + 1j * w * lam)
-                                      for c, lam in zip(material.compliances, material.creep_times))
-    if shape[0] % 2 == 0:
-        nyq = np.zeros(shape, bool)
-        nyq[shape[0] // 2] = True
-        comp = np.where(nyq, comp.real, comp)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(qn > 0, 2 * (1 - material.nu**2) / np.where(qn > 0, qn, 1.0) * comp, 0.0)
+    with np.errstate(divide="ignore"):
+        green = np.where(qn > 0, 2 * (1 - material.nu**2) / np.where(qn > 0, qn, 1.0), 0.0)
+    a = green / material.complex_modulus(-q[0] * speed)
+    mirror = a[tuple(np.ix_(*[(-np.arange(n)) % n for n in shape]))]  # a at -q on the grid
+    return 0.5 * (a + np.conj(mirror))
+
+
+def displacement(pressure, a):
+    """Zero-mean displacement (m) of ``pressure`` (Pa) through the full-spectrum symbol ``a``."""
+    return np.real(np.fft.ifftn(np.fft.fftn(pressure) * a))
+
+
+def full_contact_pressure(heights, a):
+    """Zero-mean pressure (Pa) making the gap vanish everywhere; add the mean load to it.
+
+    Full contact is the one case where the contact problem is solved exactly in Fourier
+    space; ``a`` must be Hermitian (as :func:`symbol` returns it).
+    """
+    inv = np.where(a != 0, 1.0 / np.where(a != 0, a, 1.0), 0.0)
+    return np.real(np.fft.ifftn(np.fft.fftn(heights) * inv))
+
+
+def x_derivative(field, length):
+    """Spectral derivative along x (axis 0) of a periodic field (SPEC §7: never differences);
+    the x-Nyquist mode of an even grid, whose derivative has no defined sign, is dropped."""
+    qx = wavevectors(field.shape, length)[0]
+    if field.shape[0] % 2 == 0:
+        qx = np.where(np.abs(qx) == np.pi * field.shape[0] / length, 0.0, qx)
+    return np.real(np.fft.ifftn(1j * qx * np.fft.fftn(field)))
 
 
 def full_contact(heights, length, material, speed, mean_pressure):
@@ -46,15 +69,9 @@ def full_contact(heights, length, material, speed, mean_pressure):
     the dissipation form and eq. 6 (``nan`` for ``mean_pressure = 0``). Valid when the returned pressure is >= 0 everywhere.
     """
     h = np.asarray(heights, float)
-    a = _symbol(h.shape, length, material, speed)
-    hq = np.fft.fftn(h)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        pq = np.where(a != 0, hq / np.where(a != 0, a, 1.0), 0.0)
-    p = mean_pressure + np.real(np.fft.ifftn(pq))
-    qx = _wavevectors(h.shape, length)[0].copy()
-    if h.shape[0] % 2 == 0:
-        qx[h.shape[0] // 2] = 0.0
-    dhdx = np.real(np.fft.ifftn(1j * qx * hq))
+    a = symbol(h.shape, length, material, speed)
+    p = mean_pressure + full_contact_pressure(h, a)
+    dhdx = x_derivative(h, length)
     mu = float(-np.mean(p * dhdx) / mean_pressure) if mean_pressure > 0 else float("nan")
     return p, mu
 
@@ -62,7 +79,7 @@ def full_contact(heights, length, material, speed, mean_pressure):
 def influence_matrix(shape, length, material):
     """Dense elastic (relaxed, ``E0``) influence matrix (m/Pa): column ``j`` is the zero-mean
     displacement of a unit pressure at sample ``j`` (C order)."""
-    a = _symbol(shape, length, material, 0.0).real if material.is_elastic else None
+    a = symbol(shape, length, material, 0.0).real if material.is_elastic else None
     if a is None:
         raise ValueError("influence_matrix is for elastic materials")
     kernel = np.real(np.fft.ifftn(a))  # displacement at offset d of a unit pressure at 0

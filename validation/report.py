@@ -77,7 +77,52 @@ def write_markdown(record, path, baseline=None):
         lines += ["", "| solver | point | time (s) | peak memory (MiB) | detail |", "|---|---|---|---|---|"]
         for r in c["runs"]:
             lines.append(f"| {r['solver']} | {r['label']} | {r['seconds']:.3g} | {r['peak_mib']:.3g} | {r['detail']} |")
+    lines += sensitivity_markdown(record)
     Path(path).write_text("\n".join(lines) + "\n")
+
+
+def _sensitivity_rows(record):
+    """``(cases x solvers) x perturbations`` cells: ``(row, {perturbation: (text, css)})``."""
+    entries = record.get("sensitivity") or []
+    perts = list(dict.fromkeys(e["perturbation"] for e in entries))
+    rows = {}
+    for e in entries:
+        if e["detected"]:
+            cell = ("caught by " + ", ".join(e["by"]), "PASS")
+        elif e["required"]:
+            cell = ("MISSED", "FAIL")
+        else:
+            cell = ("no effect on this solver's inputs", "info")
+        rows.setdefault((e["case"], e["solver"]), {})[e["perturbation"]] = cell
+    return perts, rows
+
+
+def sensitivity_markdown(record):
+    perts, rows = _sensitivity_rows(record)
+    if not rows:
+        return []
+    lines = ["", "## Sensitivity: deliberately wrong inputs", "",
+             "| case | solver | " + " | ".join(perts) + " |", "|---|---|" + "---|" * len(perts)]
+    for (case, solver), cells in rows.items():
+        lines.append(f"| `{case}` | {solver} | " + " | ".join(cells.get(p, ("-", ""))[0] for p in perts) + " |")
+    return lines
+
+
+def sensitivity_html(record):
+    perts, rows = _sensitivity_rows(record)
+    if not rows:
+        return []
+    e = html.escape
+    parts = ["<h2 id='sensitivity'>Sensitivity: deliberately wrong inputs</h2><p>Each case rerun with the "
+             "solvers under test given one wrong input (references keep the true one). A cell names the checks "
+             "that failed; MISSED means the wrong input passed every check.</p><table><tr><th>case</th>"
+             "<th>solver</th>" + "".join(f"<th>{e(p)}</th>" for p in perts) + "</tr>"]
+    for (case, solver), cells in rows.items():
+        tds = "".join(f"<td class='{cells[p][1]}'>{e(cells[p][0])}</td>" if p in cells else "<td>-</td>"
+                      for p in perts)
+        parts.append(f"<tr><td>{e(case)}</td><td>{e(solver)}</td>{tds}</tr>")
+    parts.append("</table>")
+    return parts
 
 
 # ----------------------------------------------------------------------------- plots
@@ -172,6 +217,7 @@ def write_html(record, path, baseline=None, figures=None, with_plots=True):
                          f"</td><td>{e(k['label'])}</td><td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td>"
                          f"<td class='{st}'>{st}</td></tr>")
     parts.append("</table>")
+    parts += sensitivity_html(record)
     for name, c in record["cases"].items():
         parts.append(f"<h2 id='{e(name)}'>{e(name)}: {e(c['title'])} <span class='{_status(c)}'>{_status(c)}</span></h2>"
                      f"<p>{e(c['description'])}</p>")

@@ -1,6 +1,6 @@
 """Study-level analysis of a finished sweep: anisotropy, contact PSD, Persson's theory.
 
-Anisotropy (SPEC §2.5). Per point the spectral moments of the deformed surface (the
+Anisotropy. Per point the spectral moments of the deformed surface (the
 displacement field ``u``, the solid's surface shape) are computed in the sweep. Here,
 for each load and speed:
 
@@ -44,7 +44,7 @@ def _moments(d):
 
 def _tensor_mean(ms):
     m20, m02, m11 = (float(np.mean([getattr(m, k) for m in ms])) for k in ("m20", "m02", "m11"))
-    return anisotropy._from_tensor(m20, m02, m11)
+    return anisotropy.moments_from_tensor(m20, m02, m11)
 
 
 def anisotropy_summary(scene, recs, l):
@@ -108,7 +108,7 @@ def contact_psd_summary(scene, recs, points_dir):
                 try:
                     cpsd = anisotropy.contact_psd(np.stack(chis), scene.surface.length,
                                                   smoothing=scene.psd_smoothing)
-                    ell = anisotropy.psd_contour(cpsd, scene.contact_level)
+                    ell = anisotropy.psd_contour(cpsd, scene.contact_level, direction=scene.direction)
                     maps[(l, i)] = (cpsd, ell)
                 except InputError as err:
                     msg = str(err)

@@ -1,85 +1,119 @@
-"""``viscobem`` command line.
+"""viscobem: friction, true contact area and pressure of a rigid rough surface sliding over
+a linear viscoelastic solid (rubber, elastomers), by a fast boundary element method.
 
-    viscobem run [SCENE.toml | NAME] [--out DIR] [--workers N] [--scheduler ADDR]
-                                              run a study (the seed paper's by default;
-                                              NAME: a built-in scene, e.g. seed_figures);
-                                              rerun on the same DIR to resume a sweep
-    viscobem bench [--quick] --out DIR        run time against error of every solver, scaling,
-                                              skipping; regenerates README's bench table
-    viscobem bench periodic|fem|isolated [--quick] --out DIR   one solver's detailed benchmark
-    viscobem bench rubber_speeds [--quick] --out DIR   the periodic benchmark's rubber over speed
-    viscobem scene                            print the built-in default scene
+    viscobem run [SCENE.toml | NAME] [--out DIR] [--set KEY=VALUE ...]
+                                              run a study (the seed paper's by default; NAME: a
+                                              built-in scene); rerun on the same DIR to resume
+    viscobem scene [NAME]                     print a built-in scene (default: the template)
+    viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem, isolated,
+                                              rubber_speeds, import, materials); writes only
+                                              under DIR
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
-and exits with status 2; a sweep with points that did not converge exits with 1, and so
-does a validation run in which any case misses a tolerance or a baseline.
+and exits with status 2; so does a missing optional package (the line names the pip extra
+to install). A sweep with points that did not converge exits with 1, and so does a
+validation run in which any case misses a tolerance or a baseline.
 """
 import argparse
-import logging
 import sys
 from pathlib import Path
 
 from bem.errors import ConvergenceError, InputError
+
+from .catalog import builtin_scenes, install_hint, require, scene_path
 
 
 def _cmd_run(args):
     from . import scene as scenes
     from .study import run_scene
 
-    scene = scenes.load(args.scene)
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers must be an integer >= 1, got {args.workers}")
+    scene = scenes.load(args.scene, overrides=args.set)
+    scheduler = args.scheduler if args.scheduler is not None else scene.scheduler
+    if scheduler is not None:
+        require("distributed")
+    if scene.outputs["vtk"]:
+        require("pyvista")
     print(f"viscobem run: {scene.title}")
     print(f"  surface {scene.surface.shape} on {scene.surface.length} m x {len(scene.realisations)} "
           f"realisation(s), load {', '.join(f'{x:g}' for x in scene.loads)} N, "
           f"{scene.speeds.size} speeds; writing to {args.out}")
+    for line in scenes.describe_xi(scene):
+        print(f"  {line}")
+    for text in scene.warnings:
+        print(f"  WARNING: {text}")
     record = run_scene(scene, args.out, progress=not args.no_progress, scheduler=args.scheduler,
                        workers=args.workers)
     if record["resumed_points"]:
         print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
-    curve = record["friction_curve"]
-    print(f"  {'xi':>10} {'speed (m/s)':>12} {'friction':>10} {'s.e.':>9} {'contact':>9} {'iters':>6}")
-    for i, xi in enumerate(curve["xi"]):
-        if curve["success"][i]:
-            se = curve["friction_se"][i]
-            print(f"  {xi:10.3e} {curve['speed'][i]:12.4e} {curve['friction'][i]:10.5f} "
-                  f"{'' if se is None else f'{se:9.5f}':>9} {curve['contact_fraction'][i]:9.4f} "
-                  f"{curve['iterations'][i]:6d}")
-        else:
-            print(f"  {xi:10.3e} {curve['speed'][i]:12.4e}  FAILED: {curve['message'][i]}")
+    if "temperature_sweep" in record:  # a sweep per temperature: the table of mu(v, T) first
+        from .temperatures import summary
+
+        print(summary(record))
+        print(f"  at {record['friction_curve_temperature']:g} K:")
+    _print_curve(record["friction_curve"], record["surface"].get("hertz_radius_relaxed", [None])[0])
+    for text in record["warnings"][len(scene.warnings):]:
+        print(f"  WARNING: {text}")
     print(f"  total {record['stages']['total']:.1f} s; files: {', '.join(record['files'])}")
     return 0 if record["all_converged"] else 1
 
 
-def _cmd_scene(args):
-    from .scene import DEFAULT_SCENE
+def _print_curve(curve, a0=None):
+    """The friction curve as a table; indenters show the contact radius and a / a0."""
+    area = "a (mm)  a/a0" if a0 else "contact %"
+    print(f"  {'xi':>10} {'speed (m/s)':>12} {'friction':>10} {'s.e.':>9} {area:>13} {'iters':>6}")
+    for i, xi in enumerate(curve["xi"]):
+        if not curve["success"][i]:
+            print(f"  {xi:10.3e} {curve['speed'][i]:12.4e}  FAILED: {curve['message'][i]}")
+            continue
+        se = curve["friction_se"][i]
+        if a0:
+            a = curve["contact_radius"][i]
+            contact = f"{a * 1e3:7.4f} {a / a0:5.3f}"
+        else:
+            contact = f"{100 * curve['contact_fraction'][i]:9.3f}"
+        print(f"  {xi:10.3e} {curve['speed'][i]:12.4e} {curve['friction'][i]:10.5f} "
+              f"{'' if se is None else f'{se:9.5f}':>9} {contact:>13} {curve['iterations'][i]:6d}")
 
-    print(DEFAULT_SCENE.read_text(), end="")
+
+def _cmd_scene(args):
+    print(scene_path(args.name).read_text(encoding="utf-8"), end="")
     return 0
+
+
+def run_scene_text(text, out):
+    """Run the study of a scene given as TOML text into ``out``; its record (for the benchmarks)."""
+    from . import scene as scenes
+    from .study import run_scene
+
+    return run_scene(scenes.parse(text), out, progress=False)
 
 
 def _cmd_bench(args):
     import importlib
-    from pathlib import Path
 
+    if args.name == "import":
+        from . import import_bench
+
+        import_bench.run(out_dir=args.out, repeats=1 if args.quick else 7)
+        return 0
     if args.name != "all":
-        module = importlib.import_module(f"benchmarks.{args.name}")
+        module = importlib.import_module(f"viscobem_bench.{args.name}")
         module.run(quick=args.quick, out_dir=args.out)
         return 0
-    from benchmarks import suite
+    from viscobem_bench import suite
 
-    readme = None
-    if not args.no_readme:
-        readme = Path(args.readme) if args.readme else Path(suite.__file__).resolve().parents[1] / "README.md"
-        if not readme.is_file():
-            print(f"viscobem bench: no README at {readme}; the table is only in {args.out}/bench.md")
-            readme = None
-    suite.run(quick=args.quick, out_dir=args.out, readme=readme)
+    from .scene import DEFAULT_SCENE
+
+    suite.run(quick=args.quick, out_dir=args.out, study=(run_scene_text, DEFAULT_SCENE.read_text()))
     return 0
 
 
 def _cmd_validate(args):
+    if not args.no_vtk:
+        require("pyvista")
     from validation import baselines
     from validation.report import write_reports
     from validation.runner import run_cases, select
@@ -97,6 +131,10 @@ def _cmd_validate(args):
     record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk,
                        progress=not args.no_progress)
     summary = record["summary"]
+    if args.sensitivity:
+        from validation.sensitivity import attach
+
+        attach(record, names, quick=args.quick, progress=not args.no_progress)
     comparison = None
     if compare_with:
         comparison = baselines.compare(record, baseline_path)
@@ -111,12 +149,17 @@ def _cmd_validate(args):
         print(f"  FAIL {k['case']}: {k['solver']} {k['metric']} at {k['label']} = {k['value']:.3g} "
               f"> {k['tolerance']:.3g} ({k['why']})")
     status = 0 if not summary["failed"] else 1
+    if args.sensitivity:
+        from validation.sensitivity import print_summary
+
+        status = print_summary(record) or status
     if comparison is not None:
         for r in comparison["regressions"]:
             print(f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
                   f"(allowed +-{r['allowed']:.3g})")
         if comparison["missing"]:
-            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {comparison['missing'][0]['key']}); "
+            first = comparison["missing"][0]["key"]
+            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
                   f"regenerate with: viscobem validate --quick --update-baselines --out DIR")
         print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
         status = status or (0 if comparison["ok"] else 1)
@@ -131,27 +174,56 @@ def _cmd_validate(args):
     return status
 
 
+def _version():
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("viscobem")
+    except PackageNotFoundError:  # a source tree that is not installed
+        return "unknown (not installed)"
+
+
+class _Version(argparse.Action):
+    """``--version``, reading the installed metadata only when asked (it is slow to import)."""
+
+    def __init__(self, option_strings, dest, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"viscobem {_version()}")
+        parser.exit()
+
+
 def build_parser():
-    parser = argparse.ArgumentParser(prog="viscobem", description=__doc__.split("\n\n")[0])
+    names = ", ".join(builtin_scenes())
+    parser = argparse.ArgumentParser(prog="viscobem", description=__doc__.split("\n\n")[0],
+                                     epilog=f"built-in scenes: {names}. Start with: viscobem scene > my.toml")
+    parser.add_argument("--version", action=_Version, help="print the version and exit")
     parser.add_argument("-v", "--verbose", action="store_true", help="log solver progress")
     sub = parser.add_subparsers(dest="command", required=True)
-    run = sub.add_parser("run", help="run a scene (default: the seed paper's study)")
+    run = sub.add_parser("run", help=f"run a scene (default: the seed paper's study; built-in: {names})",
+                         epilog=f"built-in scenes: {names}")
     run.add_argument("scene", nargs="?", default=None,
-                     help="scene TOML file or the name of a built-in scene (seed, seed_figures)")
+                     help=f"scene TOML file or the name of a built-in scene ({names})")
     run.add_argument("--out", default="viscobem-out", help="output folder (default: viscobem-out)")
+    run.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                     help="override a scene key, e.g. --set surface.n=64 --set loading.xi.num=5 "
+                          "(VALUE in TOML syntax; repeatable)")
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
     run.add_argument("--workers", type=int, default=None, help="processes (overrides [solver] workers)")
     run.add_argument("--scheduler", default=None,
-                     help="dask.distributed scheduler address, e.g. tcp://host:8786 (overrides [solver] scheduler)")
+                     help="dask.distributed scheduler address, e.g. tcp://host:8786 (overrides [solver] "
+                          "scheduler; needs pip install \"viscobem[dask]\")")
     run.set_defaults(func=_cmd_run)
-    scene = sub.add_parser("scene", help="print the built-in default scene (a template)")
+    scene = sub.add_parser("scene", help=f"print a built-in scene ({names}; default: the template)")
+    scene.add_argument("name", nargs="?", default=None, help=f"built-in scene: {names}")
     scene.set_defaults(func=_cmd_scene)
-    bench = sub.add_parser("bench", help="run a benchmark")
-    bench.add_argument("name", nargs="?", default="all", choices=["all", "periodic", "fem", "isolated", "rubber_speeds"],
-                       help="all (default: every solver, scaling, skipping) or one detailed benchmark")
-    bench.add_argument("--readme", default=None, help="README whose bench table to regenerate "
-                       "(default: the project's README.md)")
-    bench.add_argument("--no-readme", action="store_true", help="leave the README alone")
+    bench = sub.add_parser("bench", help="run a benchmark (writes only under --out)")
+    bench.add_argument("name", nargs="?", default="all",
+                       choices=["all", "periodic", "fem", "isolated", "rubber_speeds", "import", "materials"],
+                       help="all (default: every solver, scaling, skipping), one detailed benchmark, "
+                            "import (import time of bem against numpy + scipy), or materials (Prony fits "
+                            "and master curves against pyvisco)")
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)
@@ -166,12 +238,17 @@ def build_parser():
     val.add_argument("--no-baseline", action="store_true", help="with --quick: do not compare with the baselines")
     val.add_argument("--update-baselines", action="store_true",
                      help="with --quick: store this run's numbers as the new baselines")
+    val.add_argument("--sensitivity", action="store_true",
+                     help="rerun each case with deliberately wrong inputs (moduli, times, speed, load) and "
+                          "report which checks catch them (report.json['sensitivity'])")
     val.set_defaults(func=_cmd_validate)
     return parser
 
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
+    import logging
+
     logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
                         format="%(levelname)s %(name)s: %(message)s")
     try:
@@ -183,11 +260,18 @@ def main(argv=None):
         where = f" {err.filename!r}" if getattr(err, "filename", None) else ""
         print(f"viscobem: error: cannot write{where}: {err.strerror or err}", file=sys.stderr)
         return 2
+    except ModuleNotFoundError as err:
+        hint = install_hint(err.name)
+        if hint is None:
+            raise
+        print(f"viscobem: error: {hint}", file=sys.stderr)
+        return 2
     except ConvergenceError as err:
         print(f"viscobem: did not converge: {err}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
-        print("viscobem: interrupted; finished points are in results.json", file=sys.stderr)
+        print("viscobem: interrupted; the finished points are kept: rerun the same command to resume",
+              file=sys.stderr)
         return 130
 
 

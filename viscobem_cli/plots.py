@@ -49,55 +49,101 @@ def _mark_peak(ax, xi, peak):
         ax.axvline(xi[peak], color="0.6", ls=":", lw=1)
 
 
+def label_log_axis(axis):
+    """Numbers on a log axis that spans less than two decades: label its minor ticks too
+    (otherwise such an axis may show one label or none)."""
+    import matplotlib.ticker as mticker
+
+    lo, hi = axis.get_view_interval()
+    if lo > 0 and np.log10(hi / lo) < 2:
+        axis.set_minor_formatter(mticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(2, 0.4)))
+
+
+def _speed_axis(ax, scene):
+    """A secondary x axis on top: the sliding speed (m/s) that xi stands for."""
+    k = scene.xi_length / scene.xi_time
+    top = ax.secondary_xaxis("top", functions=(lambda x: x * k, lambda v: v / k))
+    top.set_xlabel("sliding speed v (m/s)", fontsize=8)
+    top.tick_params(labelsize=7)
+
+
+def _xi_label(scene):
+    where = "a_0" if scene.xi_length != scene.surface.length else "L"
+    return rf"$\xi = v\,\tau / {where}$  ($\tau$ = {scene.xi_time:.3g} s, ${where}$ = {scene.xi_length * 1e3:.3g} mm)"
+
+
 def friction_curve(scene, record, path):
-    """Friction (both forms, mean ± standard error) against xi; Persson's theory if computed."""
+    """Friction (both forms, mean ± standard error) against xi, on a linear and a log axis;
+    Persson's theory if computed."""
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.4), constrained_layout=True)
     xi = np.asarray(scene.xi)
-    for k, curve in enumerate(record["curves"]):
-        tag = f" ({curve['load']:g} N)" if len(record["curves"]) > 1 else ""
-        mu, se = _arr(curve["friction"]), _arr(curve["friction_se"])
-        ax.errorbar(xi, mu, yerr=None if np.all(np.isnan(se)) else se, fmt="o-", ms=4, capsize=2,
-                    label=r"BEM $\mu$ (dissipation)" + tag)
-        if k == 0:
-            ax.plot(xi, _arr(curve["friction_eq6"]), "s--", ms=3, label=r"BEM $\mu$ (eq. 6)")
-    for row in record.get("persson", []):
-        ax.plot(xi, row["friction"], "k-", lw=1.2, label=f"Persson (2001), {row['pressure']:.3g} Pa")
-    ax.set_xscale("log")
-    ax.set_xlabel(r"$\xi = v\,\tau / L$")
-    ax.set_ylabel("friction coefficient")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
+    for ax in axes:
+        for k, curve in enumerate(record["curves"]):
+            tag = f" ({curve['load']:g} N)" if len(record["curves"]) > 1 else ""
+            mu, se = _arr(curve["friction"]), _arr(curve["friction_se"])
+            ax.errorbar(xi, mu, yerr=None if np.all(np.isnan(se)) else se, fmt="o-", ms=5, capsize=2, lw=1.5,
+                        label=r"$\mu$, dissipation form" + tag, zorder=2)
+            if k == 0:  # drawn on top, dashed with open markers: visible where the forms coincide
+                ax.plot(xi, _arr(curve["friction_eq6"]), "s--", ms=6, mfc="none", mew=1.2, lw=1.2,
+                        color="C3", label=r"$\mu$, eq. 6 ($-\int p\,\partial h/\partial x$)", zorder=3)
+        for row in record.get("persson", []):
+            ax.plot(xi, row["friction"], "k-", lw=1.2, label=f"Persson (2001), {row['pressure']:.3g} Pa")
+        ax.set_xscale("log")
+        ax.set_xlabel(_xi_label(scene), fontsize=9)
+        ax.set_ylabel("friction coefficient $\\mu$")
+        ax.grid(True, which="both", alpha=0.3)
+        _speed_axis(ax, scene)
+    axes[1].set_yscale("log")
+    label_log_axis(axes[1].yaxis)
+    axes[0].set_ylim(bottom=0)
+    axes[0].legend(fontsize=8, loc="best")
+    axes[1].set_title("log scale: the tails", fontsize=9)
     k = len(scene.realisations)
     import textwrap
 
-    ax.set_title(textwrap.fill(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), 90),
-                 fontsize=8)
+    fig.suptitle(textwrap.fill(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), 110),
+                 fontsize=9)
     _save(fig, path)
 
 
 def contact_area(scene, record, path):
-    """True contact fraction against xi (log axes), with Persson's P(q1) if computed."""
+    """True contact area against xi: % of the cell (periodic), or contact radius (mm) and
+    a / a_Hertz (indenters); Persson's P(q1) if computed."""
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(6.0, 4.0), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(6.4, 4.4), constrained_layout=True)
     xi = np.asarray(scene.xi)
+    indenter = "contact_radius" in record["curves"][0]
     for curve in record["curves"]:
-        a, se = _arr(curve["contact_fraction"]), _arr(curve["contact_fraction_se"])
-        ax.errorbar(xi, a, yerr=None if np.all(np.isnan(se)) else se, fmt="^-", ms=4, capsize=2,
+        key = "contact_radius" if indenter else "contact_fraction"
+        scale = 1e3 if indenter else 100.0
+        a, se = _arr(curve[key]) * scale, _arr(curve[key + "_se"]) * scale
+        ax.errorbar(xi, a, yerr=None if np.all(np.isnan(se)) else se, fmt="^-", ms=5, capsize=2,
                     label=f"BEM, {curve['load']:g} N")
     for row in record.get("persson", []):
-        ax.plot(xi, row["contact_fraction"], "k-", lw=1.2, label="Persson P(q1)")
+        ax.plot(xi, 100 * np.asarray(row["contact_fraction"], dtype=float), "k-", lw=1.2, label="Persson P(q1)")
     ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel(r"$\xi = v\,\tau / L$")
-    ax.set_ylabel("contact area fraction")
+    ax.set_xlabel(_xi_label(scene), fontsize=9)
+    if indenter:
+        a0 = record["surface"]["hertz_radius_relaxed"][0] * 1e3
+        glassy = record["surface"]["hertz_radius_glassy"][0] * 1e3
+        ax.axhline(a0, color="0.4", ls=":", lw=1, label=f"Hertz, relaxed $E_0$: $a_0$ = {a0:.3g} mm")
+        ax.axhline(glassy, color="0.4", ls="--", lw=1, label=rf"Hertz, glassy $E_\infty$: {glassy:.3g} mm")
+        ax.set_ylabel("contact radius a (mm)")
+        right = ax.secondary_yaxis("right", functions=(lambda y: y / a0, lambda r: r * a0))
+        right.set_ylabel(r"$a / a_\mathrm{Hertz}$ (relaxed)")
+    else:
+        ax.set_ylabel("true contact area (% of the nominal area)")
+        ax.set_ylim(bottom=0)
     ax.grid(True, which="both", alpha=0.3)
+    _speed_axis(ax, scene)
     ax.legend(fontsize=8)
     _save(fig, path)
 
 
-def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0):
-    """A 2-D map (profile for 1-D) with the sliding direction marked."""
+def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0, discrete=None):
+    """A 2-D map (profile for 1-D) with the sliding direction marked; ``discrete``: tick
+    labels of a map of integer classes (e.g. ``["no contact", "contact"]``)."""
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(5.6, 4.6), constrained_layout=True)
     x = surface.x * 1e3
@@ -107,9 +153,18 @@ def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0):
         ax.set_ylabel(label)
     else:
         ext = [0, surface.length * 1e3, 0, surface.length * 1e3]
-        im = ax.imshow(np.asarray(field).T * scale, origin="lower", extent=ext, cmap=cmap,
+        norm = None
+        if discrete is not None:
+            from matplotlib.colors import BoundaryNorm, ListedColormap
+
+            cmap = ListedColormap(["white", "black"]) if len(discrete) == 2 else _pyplot().get_cmap("tab10",
+                                                                                                   len(discrete))
+            norm = BoundaryNorm(np.arange(len(discrete) + 1) - 0.5, len(discrete))
+        im = ax.imshow(np.asarray(field).T * scale, origin="lower", extent=ext, cmap=cmap, norm=norm,
                        interpolation="nearest")
-        fig.colorbar(im, ax=ax, label=label)
+        bar = fig.colorbar(im, ax=ax, label=label, ticks=None if discrete is None else range(len(discrete)))
+        if discrete is not None:
+            bar.ax.set_yticklabels(discrete)
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm)")
         _sliding_arrow(ax)
@@ -117,9 +172,48 @@ def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0):
     _save(fig, path)
 
 
+def deformed_surface(surface, f, xi, path, *, periodic=True):
+    """The deformed interface: the separation between the rigid surface and the deformed
+    solid (map), and a profile along x through the row with most contact showing both
+    surfaces (elevation toward the rigid body, µm)."""
+    plt = _pyplot()
+    rigid = -(surface.heights - surface.heights.max() + f.approach) * 1e6  # heights point into the solid
+    solid = -np.asarray(f.displacement) * 1e6  # displacement is positive into the solid
+    gap = np.maximum(rigid - solid, 0.0)
+    x = surface.x * 1e3
+    if surface.ndim == 2:
+        row = int(np.argmax(np.count_nonzero(np.asarray(f.pressure) > 0, axis=0)))
+        fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 8.0), constrained_layout=True,
+                                          gridspec_kw={"height_ratios": [1.4, 1]})
+        ext = [0, surface.length * 1e3, 0, surface.length * 1e3]
+        im = top.imshow(gap.T, origin="lower", extent=ext, cmap="viridis", interpolation="nearest")
+        fig.colorbar(im, ax=top, label="separation (µm); 0 in contact")
+        top.axhline(surface.x[row] * 1e3, color="w", lw=0.8, ls="--")
+        top.set_xlabel("x (mm)")
+        top.set_ylabel("y (mm)")
+        top.set_title(rf"$\xi$ = {xi:.3g}: gap between the rigid surface and the deformed solid", fontsize=9,
+                      pad=18)
+        _sliding_arrow(top)
+        touch = np.asarray(f.pressure)[:, row] > 0
+        rigid, solid, where = rigid[:, row], solid[:, row], f" at y = {surface.x[row] * 1e3:.3g} mm (dashed)"
+    else:
+        fig, bottom = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
+        touch, where = np.asarray(f.pressure) > 0, rf" at $\xi$ = {xi:.3g}"
+    bottom.plot(x, rigid, "k-", lw=1.0, label="rigid surface")
+    bottom.plot(x, solid, "C0-", lw=1.2, label="deformed solid surface")
+    low = min(rigid.min(), solid.min())
+    bottom.fill_between(x, low, solid, where=touch, color="C3", alpha=0.5, step="mid", label="contact")
+    bottom.set_xlabel("x (mm), sliding toward +x")
+    bottom.set_ylabel("elevation (µm; " + ("mean plane of the solid" if periodic else "solid far away") + " at 0)")
+    bottom.set_title(f"profile{where}", fontsize=9)
+    bottom.legend(fontsize=8, loc="lower right")
+    bottom.grid(True, alpha=0.3)
+    _save(fig, path)
+
+
 def polar_m2(scene, record, l, i, path):
     """m2(theta) of the deformed surface (ensemble tensor) at xi_i and at the lowest xi."""
-    from bem.anisotropy import _from_tensor
+    from bem.anisotropy import moments_from_tensor
 
     plt = _pyplot()
     pts = [p for p in record["points"] if p["l"] == l and p.get("moments")]
@@ -131,7 +225,7 @@ def polar_m2(scene, record, l, i, path):
         ms = [p["moments"] for p in pts if p["i"] == idx]
         if not ms:
             continue
-        m = _from_tensor(*(np.mean([d[k] for d in ms]) for k in ("m20", "m02", "m11")))
+        m = moments_from_tensor(*(np.mean([d[k] for d in ms]) for k in ("m20", "m02", "m11")))
         r = m.m2(theta) / m.m2_max
         ax.plot(theta, r, style, label=rf"$\xi$ = {scene.xi[idx]:.3g} {name}: $\gamma$ = {m.gamma:.3f}, "
                                       rf"$\Theta$ = {np.degrees(m.theta_max):.0f}°")
@@ -273,10 +367,10 @@ def write_all(scene, record, fields, extras, out):
         f, x = fields[j], scene.xi[j]
         field_map(scene.surface, f.pressure, x, out / "pressure_map.png", label="pressure (MPa)", cmap="magma",
                   scale=1e-6, title=rf"$\mu$ = {f.friction:.4g}, contact {100 * f.contact_fraction:.2f} %")
-        field_map(scene.surface, f.pressure > 0, x, out / "contact_map.png", label="in contact", cmap="gray_r",
-                  title=f"contact area {100 * f.contact_fraction:.2f} % (realisation 0)")
-        field_map(scene.surface, f.displacement, x, out / "deformed_surface.png", label="displacement (µm)",
-                  cmap="viridis", scale=1e6, title="deformed surface (displacement into the solid)")
+        field_map(scene.surface, (f.pressure > 0).astype(int), x, out / "contact_map.png", label="", cmap=None,
+                  title=f"contact area {100 * f.contact_fraction:.2f} % (realisation 0)",
+                  discrete=["no contact", "contact"])
+        deformed_surface(scene.surface, f, x, out / "deformed_surface.png", periodic=scene.periodic)
         names += ["pressure_map.png", "contact_map.png", "deformed_surface.png"]
     if scene.outputs["anisotropy"]:
         polar_m2(scene, record, 0, i, out / "polar_m2.png")

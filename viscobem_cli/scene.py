@@ -1,12 +1,17 @@
 """Scenes: one study described in a TOML file, parsed into validated objects.
 
-Schema (SI units; unknown keys are an error that lists the valid ones)::
+Every key with its type, unit, default, valid range and meaning is in the table
+:data:`viscobem_cli.schema.KEYS` (the documentation's scenes reference is generated from it).
+In short (SI units; unknown keys are an error that lists the valid ones)::
 
     title = "..."                      # optional
     [material]   nu = 0.5 and one of:  E  |  E0, E_inf, creep_time | relaxation_time
                  |  E0, moduli, times (Prony)  |  E0, compliances, times (creep)
-                 |  dma = "file.csv" (columns: frequency, storage E' (Pa), loss E'' (Pa);
-                    dma_frequency_unit = "rad/s" | "Hz"; dma_terms_per_decade = 2.0)
+                 |  dma = "file.csv" (columns: frequency, storage E', loss E'' [, temperature];
+                    dma_frequency_unit = "rad/s" | "Hz"; dma_modulus_unit = "Pa" | "kPa" | "MPa" | "GPa";
+                    dma_temperature_unit = "K" | "C"; dma_terms_per_decade = 3.0)
+                 shift = { law = "wlf", C1, C2, reference_temperature (K) } | { law = "arrhenius",
+                    activation_energy (J/mol), reference_temperature (K) }  (see viscobem_cli.temperatures)
     [surface]    kind = "self_affine" | "sinusoid" | "file" | "sphere" | "cylinder", length (m),
                  n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
@@ -15,9 +20,13 @@ Schema (SI units; unknown keys are an error that lists the valid ones)::
                  file:        path (.npy/.txt/.csv, relative to the scene file), unit
                  sphere, cylinder: radius (m), exact (default false: paraboloid); an isolated
                               indenter centred in a domain of side length (2-D map / 1-D profile)
+                 measured:    path (any instrument format), n, detrend, boundary, window, alpha,
+                              unit, scan_size, channel (viscobem_cli.measured_scene)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
-                 material's longest creep time)
+                 material's longest creep time); temperatures = [...] (K; needs a shift law);
+                 direction_deg (sliding direction from +x toward +y, degrees; a list sweeps it:
+                 viscobem_cli.directions)
     [solver]     rtol, maxiter, warm_start, workers (processes, default 1), chunk (speeds per
                  task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol,
                  periodic (default false for sphere and cylinder, true otherwise),
@@ -36,28 +45,38 @@ from bem import Material, surfaces
 from bem.checks import check_positive
 from bem.errors import InputError
 
+from . import guidance, scene_values, temperatures
+from .catalog import SCENE_DIR, builtin_scenes, scene_path
+
+__all__ = ["Scene", "parse", "load", "describe_xi", "builtin_scenes", "SCENE_DIR", "DEFAULT_SCENE", "SCHEMA",
+           "SURFACE_KINDS", "INDENTER_KINDS"]
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
 
+# valid key names per section ("" = top level); each has a documented row in viscobem_cli.schema.KEYS
 SCHEMA = {
     "": {"title", "material", "surface", "loading", "solver", "outputs", "analysis"},
     "material": {"nu", "E", "E0", "E_inf", "creep_time", "relaxation_time", "moduli", "times",
-                 "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade"},
+                 "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade",
+                 "dma_modulus_unit", "dma_temperature_unit", "shift"},
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
                 "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
-                "realisations", "radius", "exact"},
-    "loading": {"load", "speeds", "xi", "xi_time"},
+                "realisations", "radius", "exact",
+                "detrend", "boundary", "window", "alpha", "scan_size", "channel"},  # kind = "measured"
+    "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
     "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
                "method"},
-    "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson"},
+    "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson",
+                "fields_precision"},
     "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
-SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder")
+SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder", "measured")
 INDENTER_KINDS = ("sphere", "cylinder")  # isolated indenters: periodic = false by default
-SCENE_DIR = Path(__file__).with_name("scenes")
-DEFAULT_SCENE = SCENE_DIR / "seed.toml"
+DEFAULT_SCENE = scene_path(None)
+MIN_POINTS_PER_WAVELENGTH = 4  # fewer: the two friction forms drift apart (a warning)
 
 
 @dataclass(frozen=True)
@@ -88,6 +107,24 @@ class Scene:
     contact_level: float = 0.476
     psd_smoothing: float = 1.0
     plot_xi: float = None
+    xi_length: float = None  # l in xi = v tau / l (m): the cell length, or a0 for an indenter
+    xi_time_source: str = ""
+    warnings: tuple = ()  # texts that explain a doubtful setting and what to change
+    fields_precision: str = "float32"
+    shift: object = None  # time-temperature shift law (bem.temperature), or None
+    temperatures: tuple = ()  # K; a sweep per temperature when given
+    dma: dict = field(default=None, repr=False)  # the DMA table in SI (viscobem_cli.temperatures.read_dma)
+    directions: tuple = (0.0,)  # sliding directions (radians), see viscobem_cli.directions
+
+    @property
+    def kind(self):
+        """The surface kind ("self_affine", "sphere", ...)."""
+        return self.raw.get("surface", {}).get("kind", "")
+
+    @property
+    def direction(self):
+        """The sliding direction of a single-direction study (radians)."""
+        return self.directions[0]
 
     def __post_init__(self):
         if not self.realisations:
@@ -133,20 +170,7 @@ def _material(t, base):
         return Material.from_prony(E0=t["E0"], moduli=t["moduli"], times=t.get("times", []), nu=nu)
     if kind == "creep":
         return Material.from_creep(E0=t["E0"], compliances=t["compliances"], times=t.get("times", []), nu=nu)
-    if not isinstance(t["dma"], str):
-        raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
-    path = (base / t["dma"]).resolve()
-    try:
-        data = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2)
-    except (OSError, ValueError) as err:
-        raise InputError(f"[material] dma: cannot read {str(path)!r}: {err}") from None
-    if data.shape[1] < 3:
-        raise InputError(f"[material] dma: {str(path)!r} needs 3 columns (frequency, storage, loss)")
-    unit = t.get("dma_frequency_unit", "rad/s")
-    if unit not in ("rad/s", "Hz"):
-        raise InputError(f"[material] dma_frequency_unit must be 'rad/s' or 'Hz', got {unit!r}")
-    return Material.fit_prony(data[:, 0], data[:, 1], data[:, 2], hz=unit == "Hz",
-                              terms_per_decade=t.get("dma_terms_per_decade", 2.0), nu=nu)
+    return temperatures.dma_material(t, base, nu)  # 3 columns: a Prony fit; 4: a master curve
 
 
 def _surface(t, base):
@@ -154,6 +178,10 @@ def _surface(t, base):
     kind = t.get("kind")
     if kind not in SURFACE_KINDS:
         raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)}, got {kind!r}")
+    if kind == "measured":  # a measured topography file: viscobem_cli.measured_scene
+        from . import measured_scene
+
+        return (measured_scene.surface(t, base),)
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
@@ -183,55 +211,61 @@ def _surface(t, base):
     return (surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m")),)
 
 
-def _number(section, key, value):
-    """``float(value)`` for a TOML number (not a bool or string), else InputError naming it."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise InputError(f"[{section}] {key} must be a number, got {value!r}")
-    return float(value)
-
-
-def _speeds(t, material, surface):
-    _check_keys(t, "loading")
-    if "load" not in t:
-        raise InputError("[loading] load is required (N for 2-D surfaces, N/m for 1-D profiles)")
-    if material.is_elastic:
-        tau = t.get("xi_time", 1.0)
+def _xi_time(t, material):
+    """tau of xi = v tau / l (s) and where it comes from."""
+    if "xi_time" in t:
+        source = "[loading] xi_time"
+        tau = t["xi_time"]
+    elif material.is_elastic:
+        source, tau = "elastic material: 1 s; set [loading] xi_time to change it", 1.0
     else:
-        tau = t.get("xi_time", material.creep_times.max())
-    tau = check_positive("[loading] xi_time (s)", _number("loading", "xi_time", tau))
+        tau = material.creep_times.max()
+        source = "the material's longest creep time; set [loading] xi_time to change it"
+    return check_positive("[loading] xi_time (s)", scene_values.number("loading", "xi_time", tau)), source
+
+
+def _speeds(t, tau, length):
+    """Speeds (m/s) and xi of the [loading] table; ``xi = v tau / length``."""
     if ("speeds" in t) == ("xi" in t):
         raise InputError("[loading] give exactly one of speeds = [...] (m/s) or xi = {start, stop, num}")
     if "speeds" in t:
         values = t["speeds"] if isinstance(t["speeds"], list) else [t["speeds"]]
-        speeds = np.array([_number("loading", "speeds", v) for v in values], dtype=float)
+        speeds = np.array([scene_values.number("loading", "speeds", v) for v in values], dtype=float)
         if speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
             raise InputError(f"[loading] speeds must be a non-empty list of finite speeds >= 0 m/s, "
                              f"got {t['speeds']!r}")
-        return speeds, speeds * tau / surface.length, tau
+        return speeds, speeds * tau / length
     xi = t["xi"]
     if isinstance(xi, list):
         values = np.asarray(xi, dtype=float) if all(isinstance(x, (int, float)) for x in xi) else None
         if values is None or values.size == 0 or not np.all(values > 0):
             raise InputError(f"[loading] xi as a list must hold numbers > 0, got {xi!r}")
-        return values * surface.length / tau, values, tau
+        return values * length / tau, values
     if not isinstance(xi, dict) or set(xi) != {"start", "stop", "num"}:
         raise InputError("[loading] xi must be a table {start, stop, num} (log-spaced) or a list of values")
-    start, stop = (_number("loading", f"xi.{k}", xi[k]) for k in ("start", "stop"))
+    start, stop = (scene_values.number("loading", f"xi.{k}", xi[k]) for k in ("start", "stop"))
     num = xi["num"]
     if isinstance(num, bool) or not isinstance(num, int) or num < 1:
         raise InputError(f"[loading] xi.num must be an integer >= 1, got {num!r}")
     if not (0 < start <= stop < np.inf):
         raise InputError(f"[loading] xi needs 0 < start <= stop (finite), got {xi}")
     values = np.logspace(np.log10(start), np.log10(stop), num)
-    return values * surface.length / tau, values, tau
+    return values * length / tau, values
 
 
-def parse(text, *, base=Path("."), source="<string>"):
-    """Parse scene TOML ``text``; relative paths resolve against ``base``."""
+def parse(text, *, base=Path("."), source="<string>", overrides=()):
+    """Parse scene TOML ``text``; relative paths resolve against ``base``.
+
+    ``overrides``: ``"section.key=value"`` strings (``value`` in TOML syntax, e.g.
+    ``"surface.n=64"``, ``"loading.xi.num=3"``) applied on top of the text, as
+    ``viscobem run --set`` does.
+    """
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise InputError(f"scene {source}: not valid TOML: {err}") from None
+    for item in overrides:
+        scene_values.override(raw, item)
     _check_keys(raw, "")
     for section in ("material", "surface", "loading"):
         if section not in raw:
@@ -239,12 +273,24 @@ def parse(text, *, base=Path("."), source="<string>"):
     material = _material(raw["material"], base)
     realisations = _surface(raw["surface"], base)
     surface = realisations[0]
-    speeds, xi, tau = _speeds(raw["loading"], material, surface)
-    loads = _loads(raw["loading"]["load"])
+    _check_keys(raw["loading"], "loading")
+    if "load" not in raw["loading"]:
+        raise InputError("[loading] load is required (N for 2-D surfaces, N/m for 1-D profiles)")
+    loads = scene_values.loads(raw["loading"]["load"])
+    tau, tau_source = _xi_time(raw["loading"], material)
+    kind = raw["surface"]["kind"]
+    xi_length = surface.length if kind not in INDENTER_KINDS else guidance.hertz_radius(
+        kind, modulus=material.E0, nu=material.nu, radius=raw["surface"]["radius"], load=loads[0])
+    speeds, xi = _speeds(raw["loading"], tau, xi_length)
+    warnings = guidance.resolution_warnings(raw["surface"], surface.n, MIN_POINTS_PER_WAVELENGTH)
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
-    run = _solver(solver)
+    run = scene_values.solver(solver)
     run["periodic"] = solver.get("periodic", raw["surface"].get("kind") not in INDENTER_KINDS)
+    if raw["surface"].get("kind") == "measured":  # the boundary chosen for the measured patch
+        from . import measured_scene
+
+        run["periodic"] = measured_scene.periodic(raw["surface"], solver)
     if not isinstance(run["periodic"], bool):
         raise InputError(f"[solver] periodic must be true or false, got {run['periodic']!r}")
     run["method"] = solver.get("method", "auto")
@@ -254,16 +300,8 @@ def parse(text, *, base=Path("."), source="<string>"):
                          f"{str(run['periodic']).lower()}, got {run['method']!r}")
     analysis = raw.get("analysis", {})
     _check_keys(analysis, "analysis")
-    outputs = {"friction_curve": True, "fields": True, "plots": True, "vtk": False,
-               "anisotropy": False, "contact_psd": False, "persson": False}
     _check_keys(raw.get("outputs", {}), "outputs")
-    outputs.update(raw.get("outputs", {}))
-    for key, value in outputs.items():
-        if not isinstance(value, bool):
-            raise InputError(f"[outputs] {key} must be true or false, got {value!r}")
-    for key in ("anisotropy", "contact_psd", "persson"):
-        if outputs[key] and surface.ndim != 2:
-            raise InputError(f"[outputs] {key} needs a 2-D surface (dim = 2), got a 1-D profile")
+    outputs, precision = scene_values.outputs(raw.get("outputs", {}), surface)
     level = analysis.get("contact_level", 0.476)
     if not (isinstance(level, (int, float)) and 0 < level < 1):
         raise InputError(f"[analysis] contact_level must be in (0, 1), got {level!r}")
@@ -273,59 +311,31 @@ def parse(text, *, base=Path("."), source="<string>"):
     plot_xi = analysis.get("plot_xi")
     if plot_xi is not None and not (isinstance(plot_xi, (int, float)) and plot_xi > 0):
         raise InputError(f"[analysis] plot_xi must be a number > 0, got {plot_xi!r}")
+    from .directions import parse as parse_directions
+
+    run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
                  load=loads[0], speeds=speeds, xi=xi, xi_time=tau, outputs=outputs, source=source,
                  raw=raw, realisations=realisations, loads=loads, contact_level=float(level),
-                 psd_smoothing=float(smoothing), plot_xi=None if plot_xi is None else float(plot_xi), **run)
+                 psd_smoothing=float(smoothing), plot_xi=None if plot_xi is None else float(plot_xi),
+                 xi_length=float(xi_length), xi_time_source=tau_source, warnings=tuple(warnings),
+                 fields_precision=precision, **run, **temperatures.scene_fields(raw, material),
+                 dma=temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None)
 
 
-def _loads(value):
-    values = value if isinstance(value, list) else [value]
-    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf
-                             for v in values):
-        raise InputError(f"[loading] load must be a finite number > 0 or a non-empty list of them "
-                         f"(N; N/m for 1-D profiles), got {value!r}")
-    return tuple(float(v) for v in values)
-
-
-def _solver(t):
-    def integer(key, default, low):
-        v = t.get(key, default)
-        if isinstance(v, bool) or not isinstance(v, int) or v < low:
-            raise InputError(f"[solver] {key} must be an integer >= {low}, got {v!r}")
-        return v
-
-    rtol = _number("solver", "rtol", t.get("rtol", 1e-8))
-    if not 0 < rtol < 1:
-        raise InputError(f"[solver] rtol must be in (0, 1), got {rtol!r}")
-    warm = t.get("warm_start", True)
-    if not isinstance(warm, bool):
-        raise InputError(f"[solver] warm_start must be true or false, got {warm!r}")
-    fold = t.get("fold_tol", 1e-6)
-    if not (isinstance(fold, (int, float)) and 0 <= fold < 1):
-        raise InputError(f"[solver] fold_tol must be in [0, 1) (0: no folding), got {fold!r}")
-    scheduler = t.get("scheduler")
-    if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
-        raise InputError(f"[solver] scheduler must be an address such as 'tcp://host:8786', got {scheduler!r}")
-    return {"rtol": float(rtol), "maxiter": integer("maxiter", 400, 1),
-            "warm_start": warm, "workers": integer("workers", 1, 1),
-            "chunk": integer("chunk", 0, 0), "scheduler": scheduler, "fold_tol": float(fold)}
-
-
-def builtin_scenes():
-    """Names of the built-in scenes (``viscobem run NAME``)."""
-    return sorted(p.stem for p in DEFAULT_SCENE.parent.glob("*.toml"))
-
-
-def load(path=None):
-    """Read a scene file (the built-in seed study when ``path`` is None; a built-in by name)."""
-    if path is not None and not Path(path).suffix and str(path) in builtin_scenes():
-        path = DEFAULT_SCENE.parent / f"{path}.toml"
-    path = Path(path) if path is not None else DEFAULT_SCENE
+def load(path=None, *, overrides=()):
+    """Read a scene: a file, a built-in scene by name, or the default study when ``path`` is
+    None; ``overrides`` as in :func:`parse`."""
+    path = scene_path(path)
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as err:
         raise InputError(f"scene: cannot read {str(path)!r}: {err.strerror}") from None
     except UnicodeDecodeError:
         raise InputError(f"scene: cannot read {str(path)!r}: not a UTF-8 text (TOML) file") from None
-    return parse(text, base=path.parent, source=str(path))
+    return parse(text, base=path.parent, source=str(path), overrides=overrides)
+
+
+def describe_xi(scene):
+    """Console lines: tau and its origin, the length in xi and the speed range (m/s)."""
+    return guidance.describe_xi(scene)

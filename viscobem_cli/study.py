@@ -1,19 +1,25 @@
 """Run a scene and write its outputs: results.json, fields.npz, PNG plots, VTK on request.
 
-Only what the scene asks for is computed (SPEC §5): anisotropy, the contact PSD, Persson's
-theory, fields, plots and VTK each run only when requested, and ``results.json`` lists the
-stages that ran (``stages_run``) with their times (``stages``, s; per-point work summed over
+Only what the scene asks for is computed: anisotropy, the contact PSD, Persson's theory,
+fields, plots and VTK each run only when requested, and ``results.json`` lists the stages
+that ran (``stages_run``) with their times (``stages``, s; per-point work summed over
 points). Prony terms that are fully relaxed over the sweep's frequency band (and, on periodic
-profiles, glassy over ``[q_L v_min, (pi n / L) v_max]``) are folded into the elastic part first. The sweep itself
-is :mod:`viscobem_cli.sweep`: every finished point is on disk at once, and a rerun in the
-same folder resumes. ``results.json`` is rewritten (atomically) after every point.
+profiles, glassy over ``[q_L v_min, (pi n / L) v_max]``) are folded into the elastic part first.
 
-Ensembles: with ``realisations = K`` each number is reported as the mean over the
-realisations that converged and its standard error ``std(ddof=1) / sqrt(k)`` (``None`` for
-one realisation).
+The sweep itself is :mod:`viscobem_cli.sweep`: every finished point is written once, as
+its own file, and a rerun in the same folder resumes from them. ``results.json`` is written
+when the run starts (``complete: false``), when it is interrupted, and when it ends; a run
+killed outright is rebuilt from the point files by the next run. ``results.json["warnings"]``
+lists what is doubtful about the study and what to change (an under-resolved grid, friction
+forms that disagree).
 
-Every file (``results.json``, ``fields.npz``, the plots) is written atomically (a temporary
-file, then renamed), so a run that fails never leaves a truncated file, and a scene rejected
+``fields.npz`` (realisation 0 at the first load, one row per converged speed): ``heights``
+(m), ``speed`` (m/s), ``xi``, ``approach`` (m), ``pressure`` (Pa) and ``displacement`` (m)
+in ``[outputs] fields_precision`` (float32 by default), compressed. The gap is
+``displacement - (heights - max(heights) + approach)``.
+
+Every file is written atomically (a temporary file, then renamed) with the permissions of
+a plain new file, so a run that fails never leaves a truncated file, and a scene rejected
 as bad input touches nothing in the output folder.
 """
 import io
@@ -26,26 +32,21 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from bem import statistics
+from bem.sweep import check_sweep
 
-from . import analysis
-from .sweep import execute, load_fields, load_point, point_key, write_atomic
+from . import analysis, guidance, records, temperatures
+from .sweep import (
+    STUDY_FIELDS,
+    execute,
+    load_fields,
+    load_point,
+    point_key,
+    point_name,
+    remove_stale_temporaries,
+    write_atomic,
+)
 
-__all__ = ["run_scene", "write_atomic"]
-
-SCALARS = ["friction", "friction_eq6", "contact_fraction", "dissipated_power", "approach"]
-
-
-def _material_record(m):
-    return {"E0": m.E0, "E_inf": m.E_inf, "nu": m.nu, "prony_moduli": m.moduli.tolist(),
-            "relaxation_times": m.relaxation_times.tolist(), "creep_compliances": m.compliances.tolist(),
-            "creep_times": m.creep_times.tolist()}
-
-
-def _surface_record(s):
-    return {"n": s.n, "dim": s.ndim, "length": s.length, "spacing": s.spacing,
-            "rms_height": statistics.rms_height(s), "rms_slope": statistics.rms_slope(s),
-            "max_height": float(s.heights.max()), "min_height": float(s.heights.min())}
+__all__ = ["run_scene", "write_atomic", "fold_material"]
 
 
 def fold_material(scene):
@@ -60,50 +61,159 @@ def fold_material(scene):
     # an isolated domain has no lowest frequency, so there only relaxed terms are folded.
     w_min = 2 * np.pi / s.length * moving.min() if scene.periodic and s.ndim == 1 else 0.0
     w_max = np.pi * s.n / s.length * moving.max()
+    # oblique sliding: |q.d| reaches (|cos| + |sin|) times the Nyquist wavenumber
+    w_max *= max(abs(math.cos(t)) + abs(math.sin(t)) for t in scene.directions)
     return m.folded(w_min, w_max, tol=scene.fold_tol)
 
 
-def mean_se(values):
-    """Mean and standard error of the finite values (None where undefined)."""
-    v = np.array([x for x in values if x is not None and np.isfinite(x)], dtype=float)
-    if v.size == 0:
-        return None, None
-    se = float(np.std(v, ddof=1) / math.sqrt(v.size)) if v.size > 1 else None
-    return float(v.mean()), se
+def _version():
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("viscobem")
+    except PackageNotFoundError:
+        return "unknown"
 
 
-def summarise_curve(scene, recs, l):
-    """The friction curve of load ``l``: ensemble means and standard errors per speed."""
-    n, k = scene.speeds.size, len(scene.realisations)
-    curve = {"load": scene.loads[l], "xi": scene.xi.tolist(), "speed": scene.speeds.tolist(),
-             "realisations": k}
-    for key in SCALARS:
-        curve[key], curve[key + "_se"] = [None] * n, [None] * n
-    for key in ("iterations", "operator_products", "residual", "wall_time", "success", "converged"):
-        curve[key] = [None] * n
-    curve["message"] = [""] * n
-    for i in range(n):
-        pts = [recs.get((r, l, i)) for r in range(k)]
-        done = [p for p in pts if p is not None]
-        ok = [p for p in done if p["success"]]
-        for key in SCALARS:
-            curve[key][i], curve[key + "_se"][i] = mean_se([p[key] for p in ok])
-        if ok:
-            curve["iterations"][i] = int(max(p["iterations"] for p in ok))
-            curve["operator_products"][i] = int(sum(p["operator_products"] for p in ok))
-            curve["residual"][i] = float(max(p["residual"] for p in ok))
-            curve["wall_time"][i] = float(sum(p["wall_time"] for p in ok))
-        curve["converged"][i] = len(ok)
-        curve["success"][i] = (len(ok) == k) if len(done) == k else None
-        failed = sorted({p["message"] for p in done if not p["success"]})
-        curve["message"][i] = "; ".join(failed) if failed else (ok[0]["message"] if ok else "")
-    return curve
+def _base_record(scene, material, workers, scheduler):
+    return {
+        "title": scene.title, "scene": scene.source, "viscobem_version": _version(),
+        "python": platform.python_version(),
+        "units": {"length": "m", "pressure": "Pa", "load": "N (N/m for 1-D profiles)", "speed": "m/s",
+                  "power": "W (W/m for 1-D profiles)", "xi": "v * xi_time / xi_length (dimensionless)",
+                  "contact_radius": "m", "contact_area": "m^2 (m for 1-D profiles)",
+                  "moments": "m20, m02, m11 of the displacement field: m^2/m^2 (dimensionless)"},
+        "conventions": "heights positive toward the half-space; the surface slides in +x (axis 0); "
+                       "friction = dissipation form, friction_eq6 = -(1/F_N) int p dh/dx dA; ensemble "
+                       "values are means over realisations with standard errors in *_se",
+        "material": records.material_record(scene.material),
+        "material_solved": {**records.material_record(material), "terms": int(material.moduli.size),
+                            "terms_folded": int(scene.material.moduli.size - material.moduli.size)},
+        "surface": records.surface_record(scene), "realisations": len(scene.realisations),
+        "seeds": list(scene.seeds), "loads": list(scene.loads), "load": scene.load, "xi_time": scene.xi_time,
+        "xi_time_source": scene.xi_time_source, "xi_length": scene.xi_length,
+        "solver": {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
+                   "workers": workers, "scheduler": scheduler},
+        "outputs": {**scene.outputs, "fields_precision": scene.fields_precision},
+        "warnings": list(scene.warnings), "stages": {}, "stages_run": [], "complete": False,
+        "direction_deg": round(math.degrees(scene.direction), 9),
+    }
 
 
-def _point_list(recs):
-    keep = ["r", "l", "i", "seed", "load", "speed", "xi", "success", "message", *SCALARS, "iterations",
-            "residual", "wall_time", "times", "moments"]
-    return [{k: recs[key].get(k) for k in keep if k in recs[key]} for key in sorted(recs)]
+def _finished_points(scene, material, settings, points_dir):
+    """Points on disk from an earlier run of the same study, and the keys of those to solve."""
+    recs, todo = {}, {}
+    for l, load in enumerate(scene.loads):
+        for r, surf in enumerate(scene.realisations):
+            for i, speed in enumerate(scene.speeds):
+                key = point_key(material, surf, load, speed, settings)
+                rec = load_point(points_dir, r, l, i, key)
+                if rec is None:
+                    todo[(r, l, i)] = key
+                else:
+                    recs[(r, l, i)] = rec
+    return recs, todo
+
+
+def _write_record(out, scene, record, recs):
+    record["curves"] = [records.summarise_curve(scene, recs, l) for l in range(len(scene.loads))]
+    record["friction_curve"] = record["curves"][0]
+    record["points"] = records.point_list(scene, recs)
+    write_atomic(out / "results.json", json.dumps(record, indent=1))
+
+
+def _sweep(scene, material, todo, recs, points_dir, workers, scheduler, progress, keep):
+    """Solve the points in ``todo``; every finished one is added to ``recs``."""
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=len(todo), disable=not progress, desc="sweep", unit="point")
+
+    def on_point(rec):
+        where = (rec["r"], rec["l"], rec["i"])
+        if where in todo and where not in recs:
+            bar.update(1)
+        recs[where] = rec
+
+    def poll():
+        for where, key in todo.items():
+            if where not in recs:
+                rec = load_point(points_dir, *where, key)
+                if rec is not None:
+                    on_point(rec)
+
+    try:
+        execute(_tasks(scene, material, todo, points_dir, workers, scheduler, keep), workers=workers,
+                scheduler=scheduler, on_point=on_point, poll=poll)
+    finally:
+        bar.close()
+
+
+def _analyses(scene, record, recs, points_dir, stages):
+    """Anisotropy, contact PSD and Persson's theory, as requested; returns plot extras."""
+    extras = {}
+    if scene.outputs["anisotropy"]:
+        record["anisotropy"] = [analysis.anisotropy_summary(scene, recs, l) for l in range(len(scene.loads))]
+        record["stages_run"].append("anisotropy")
+    if scene.outputs["contact_psd"]:
+        t0 = time.perf_counter()
+        record["contact_psd"], extras["psd"] = analysis.contact_psd_summary(scene, recs, points_dir)
+        stages["contact_psd"] = time.perf_counter() - t0
+        record["stages_run"].append("contact_psd")
+    if scene.outputs["persson"]:
+        t0 = time.perf_counter()
+        record["persson"] = analysis.persson_summary(scene)
+        stages["persson"] = time.perf_counter() - t0
+        record["stages_run"].append("persson")
+    return extras
+
+
+def _write_fields(scene, fields, out, points_dir, recs):
+    """fields.npz of realisation 0 at the first load; its points' field files are then removed."""
+    idx = sorted(fields)
+    dtype = np.dtype(scene.fields_precision)
+    keys = [recs[(0, 0, i)]["key"] for i in idx]
+    arrays = {"heights": scene.surface.heights.astype(dtype), "speed": scene.speeds[idx], "xi": scene.xi[idx],
+              "approach": np.array([fields[i].approach for i in idx]), "point_keys": np.array(keys),
+              "pressure": np.stack([fields[i].pressure for i in idx]).astype(dtype),
+              "displacement": np.stack([fields[i].displacement for i in idx]).astype(dtype)}
+    buffer = io.BytesIO()
+    np.savez_compressed(buffer, **arrays)
+    write_atomic(out / STUDY_FIELDS, buffer.getvalue(), mode="wb")
+    if not scene.outputs["contact_psd"]:  # the point files hold nothing else
+        for i in idx:
+            (points_dir / f"{point_name(0, 0, i)}.npz").unlink(missing_ok=True)
+    return [STUDY_FIELDS]
+
+
+def _outputs(scene, record, recs, points_dir, out, extras, stages):
+    """fields.npz, plots and VTK as requested; returns the file names written."""
+    outputs, written = scene.outputs, ["results.json"]
+    fields = _fields_of_first(scene, recs, points_dir) if outputs["fields"] or outputs["plots"] or outputs["vtk"] \
+        else {}
+    steps = [("fields", outputs["fields"] and fields, lambda: _write_fields(scene, fields, out, points_dir, recs)),
+             ("plots", outputs["plots"], lambda: _plots(scene, record, fields, extras, out)),
+             ("vtk", outputs["vtk"] and fields, lambda: _vtk(scene, fields, out))]
+    for name, wanted, step in steps:
+        if wanted:
+            t0 = time.perf_counter()
+            written += step()
+            stages[name] = time.perf_counter() - t0
+            record["stages_run"].append(name)
+    return written
+
+
+def _plots(scene, record, fields, extras, out):
+    from . import plots
+
+    return plots.write_all(scene, record, fields, extras, out) + temperatures.write_master_curve(scene, out)
+
+
+def _vtk(scene, fields, out):
+    from validation import vtk_io
+
+    idx = sorted(fields)
+    return vtk_io.write_sweep(out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx],
+                              material=scene.material)
 
 
 def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
@@ -113,155 +223,71 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     A folder holding finished points of the same study is resumed: those points are not
     solved again.
     """
-    # the solver's own input checks, before anything in out_dir is touched
-    from bem.sliding import _check_inputs
+    if len(scene.directions) > 1:  # a sweep over sliding directions: one study per direction
+        from .directions import run_sweep
 
-    for load in scene.loads:
-        for speed in (float(np.min(scene.speeds)), float(np.max(scene.speeds))):
-            _check_inputs(scene.surface, scene.material, speed, load, None, scene.rtol)
+        return run_sweep(run_scene, scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
+    check_sweep(scene.surface, scene.material, speeds=scene.speeds, loads=scene.loads, rtol=scene.rtol)
+    if scene.temperatures:  # one sweep per temperature (viscobem_cli.temperatures)
+        return temperatures.run(scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(points_dir)
+    remove_stale_temporaries(out)
     t_start = time.perf_counter()
     scheduler = scheduler if scheduler is not None else scene.scheduler
     workers = workers if workers is not None else scene.workers
-    stages, stages_run = {}, []
-    t0 = time.perf_counter()
     material = fold_material(scene)
-    stages["fold"] = time.perf_counter() - t0
+    record = _base_record(scene, material, workers, scheduler)
+    stages = record["stages"]
+    stages["fold"] = time.perf_counter() - t_start
     outputs = scene.outputs
-    keep_fields = outputs["fields"] or outputs["plots"] or outputs["vtk"]
-    keep_chi = outputs["contact_psd"]
+    keep = {"fields": outputs["fields"] or outputs["plots"] or outputs["vtk"], "chi": outputs["contact_psd"],
+            "precision": scene.fields_precision}
     settings = {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
-                "anisotropy": outputs["anisotropy"],
-                "fields": keep_fields, "chi": keep_chi}
-    record = {
-        "title": scene.title, "scene": scene.source, "viscobem_version": "0.1.0",
-        "python": platform.python_version(),
-        "units": {"length": "m", "pressure": "Pa", "load": "N (N/m for 1-D profiles)", "speed": "m/s",
-                  "power": "W (W/m for 1-D profiles)", "xi": "v * xi_time / length (dimensionless)",
-                  "moments": "m20, m02, m11 of the displacement field: m^2/m^2 (dimensionless)"},
-        "conventions": "heights positive toward the half-space; the surface slides in +x (axis 0); "
-                       "friction = dissipation form, friction_eq6 = -(1/F_N) int p dh/dx dA; ensemble "
-                       "values are means over realisations with standard errors in *_se",
-        "material": _material_record(scene.material),
-        "material_solved": {**_material_record(material), "terms": int(material.moduli.size),
-                            "terms_folded": int(scene.material.moduli.size - material.moduli.size)},
-        "surface": _surface_record(scene.surface), "realisations": len(scene.realisations),
-        "seeds": list(scene.seeds), "loads": list(scene.loads), "load": scene.load, "xi_time": scene.xi_time,
-        "solver": {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
-                   "workers": workers, "scheduler": scheduler},
-        "outputs": dict(outputs), "stages": stages, "stages_run": stages_run, "complete": False,
-    }
-    recs, resumed, todo_keys = {}, 0, {}
-    for l, load in enumerate(scene.loads):
-        for r, surf in enumerate(scene.realisations):
-            for i, speed in enumerate(scene.speeds):
-                key = point_key(material, surf, load, speed, settings)
-                rec = load_point(points_dir, r, l, i, key)
-                if rec is not None:
-                    recs[(r, l, i)] = rec
-                    resumed += 1
-                else:
-                    todo_keys[(r, l, i)] = key
-    record["resumed_points"] = resumed
-
-    def write_record():
-        record["curves"] = [summarise_curve(scene, recs, l) for l in range(len(scene.loads))]
-        record["friction_curve"] = record["curves"][0]
-        record["points"] = _point_list(recs)
-        write_atomic(out / "results.json", json.dumps(record, indent=1))
-
-    from tqdm.auto import tqdm
-
-    bar = tqdm(total=len(todo_keys), disable=not progress, desc="sweep", unit="point")
-
-    def on_point(rec):
-        where = (rec["r"], rec["l"], rec["i"])
-        if where in todo_keys and where not in recs:
-            bar.update(1)
-        recs[where] = rec
-        write_record()
-
-    def poll():
-        for where, key in todo_keys.items():
-            if where not in recs:
-                rec = load_point(points_dir, *where, key)
-                if rec is not None:
-                    on_point(rec)
-
-    tasks = _tasks(scene, material, todo_keys, points_dir, workers, scheduler, keep_fields, keep_chi)
-    write_record()
+                "anisotropy": outputs["anisotropy"], **keep}
+    if scene.direction != 0.0:  # sliding direction
+        settings["direction"] = scene.direction
+    recs, todo = _finished_points(scene, material, settings, points_dir)
+    record["resumed_points"] = len(recs)
+    _write_record(out, scene, record, recs)
     t0 = time.perf_counter()
     try:
-        execute(tasks, workers=workers, scheduler=scheduler, on_point=on_point, poll=poll)
-    finally:
-        bar.close()
+        _sweep(scene, material, todo, recs, points_dir, workers, scheduler, progress, keep)
+    except BaseException:  # Ctrl-C or a failing chunk: results.json lists the finished points
+        _write_record(out, scene, record, recs)
+        raise
     stages["friction_curve"] = time.perf_counter() - t0
-    stages_run.append("friction_curve")
+    record["stages_run"].append("friction_curve")
     for name in ("solve", "anisotropy"):
         spent = [p["times"][name] for p in recs.values() if name in p.get("times", {})]
         if spent:
             stages["point_" + name] = float(sum(spent))
-    if outputs["anisotropy"]:
-        stages_run.append("anisotropy")
-        record["anisotropy"] = [analysis.anisotropy_summary(scene, recs, l) for l in range(len(scene.loads))]
-    extras = {}
-    if outputs["contact_psd"]:
-        t0 = time.perf_counter()
-        record["contact_psd"], extras["psd"] = analysis.contact_psd_summary(scene, recs, points_dir)
-        stages["contact_psd"] = time.perf_counter() - t0
-        stages_run.append("contact_psd")
-    if outputs["persson"]:
-        t0 = time.perf_counter()
-        record["persson"] = analysis.persson_summary(scene)
-        stages["persson"] = time.perf_counter() - t0
-        stages_run.append("persson")
-    write_record()
-    written = ["results.json"]
-    fields = _fields_of_first(scene, recs, points_dir) if keep_fields else {}
-    if outputs["fields"] and fields:
-        t0 = time.perf_counter()
-        idx = sorted(fields)
-        arrays = {"heights": scene.surface.heights, "speed": scene.speeds[idx], "xi": scene.xi[idx],
-                  "pressure": np.stack([fields[i].pressure for i in idx]),
-                  "displacement": np.stack([fields[i].displacement for i in idx]),
-                  "gap": np.stack([fields[i].gap for i in idx])}
-        buffer = io.BytesIO()
-        np.savez_compressed(buffer, **arrays)
-        write_atomic(out / "fields.npz", buffer.getvalue(), mode="wb")
-        stages["fields"] = time.perf_counter() - t0
-        stages_run.append("fields")
-        written.append("fields.npz")
-    if outputs["plots"]:
-        t0 = time.perf_counter()
-        from . import plots
+    extras = _analyses(scene, record, recs, points_dir, stages)
+    _write_record(out, scene, record, recs)  # the curves, for the plots
+    advice = "Raise [surface] n until they agree." if scene.kind in ("sphere", "cylinder") else None
+    record["warnings"] += guidance.friction_form_warnings(record["curves"], **({"advice": advice} if advice else {}))
+    record["warnings"] += guidance.peak_warnings(record["curves"], scene.xi_time_source)
+    record["files"] = _outputs(scene, record, recs, points_dir, out, extras, stages)
+    if scene.surface.metadata.get("kind") == "measured":  # boundary choice and PSD of the measurement
+        from .measured_scene import report
 
-        written += plots.write_all(scene, record, fields, extras, out)
-        stages["plots"] = time.perf_counter() - t0
-        stages_run.append("plots")
-    if outputs["vtk"] and fields:
-        t0 = time.perf_counter()
-        from validation import vtk_io
-
-        written += vtk_io.write_sweep(out / "vtk", scene.surface, [fields[i] for i in sorted(fields)],
-                                      scene.xi[sorted(fields)])
-        stages["vtk"] = time.perf_counter() - t0
-        stages_run.append("vtk")
-    record["files"] = written
-    record["all_converged"] = bool(all(p["success"] for p in recs.values()) and len(recs) == (
-        len(scene.realisations) * len(scene.loads) * scene.speeds.size))
+        record["files"] += report(scene, record, out)
+    expected = len(scene.realisations) * len(scene.loads) * scene.speeds.size
+    record["all_converged"] = bool(all(p["success"] for p in recs.values()) and len(recs) == expected)
     record["complete"] = True
     stages["total"] = time.perf_counter() - t_start
-    write_record()
+    _write_record(out, scene, record, recs)
     return record
 
 
-def _tasks(scene, material, todo, points_dir, workers, scheduler, keep_fields, keep_chi):
+def _tasks(scene, material, todo, points_dir, workers, scheduler, keep):
     """Chunks of neighbouring speeds per load, covering every point still to solve."""
     tasks = []
     order = np.argsort(scene.speeds, kind="stable")
     parallel = max(int(workers), 1) if scheduler is None else max(int(workers), 2)
+    indenter = scene.kind if scene.kind in ("sphere", "cylinder") else None
     for l, load in enumerate(scene.loads):
         indices = [int(i) for i in order if any((r, l, int(i)) in todo for r in range(len(scene.realisations)))]
         if not indices:
@@ -276,8 +302,9 @@ def _tasks(scene, material, todo, points_dir, workers, scheduler, keep_fields, k
                           "keys": keys, "rtol": scene.rtol, "maxiter": scene.maxiter,
                           "periodic": scene.periodic, "method": scene.method,
                           "warm_start": scene.warm_start, "anisotropy": scene.outputs["anisotropy"],
-                          "keep_fields": keep_fields, "keep_chi": keep_chi, "out": str(points_dir),
-                          "single_thread": scheduler is None and workers > 1})
+                          "keep_fields": keep["fields"], "keep_chi": keep["chi"], "precision": keep["precision"],
+                          "indenter": indenter, "out": str(points_dir),
+                          "single_thread": scheduler is None and workers > 1, "direction": scene.direction})
     return tasks
 
 
@@ -291,5 +318,5 @@ def _fields_of_first(scene, recs, points_dir):
         data = load_fields(points_dir, rec, scene.surface)
         if data is not None and "pressure" in data:
             fields[i] = SimpleNamespace(friction=rec["friction"], contact_fraction=rec["contact_fraction"],
-                                        **data)
+                                        speed=rec["speed"], load=rec["load"], approach=rec["approach"], **data)
     return fields

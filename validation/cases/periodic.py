@@ -30,7 +30,7 @@ def _line(field):
     return field if field.ndim == 1 else field[:, 0]
 
 
-def run_full_contact(*, quick, vtk_dir, root):
+def run_full_contact(*, quick, vtk_dir, root, tamper):
     material = sls(3)
     cfg = QUICK_FULL if quick else FULL_FULL
     out = CaseOutput()
@@ -47,14 +47,15 @@ def run_full_contact(*, quick, vtk_dir, root):
             p_ex, mu_ex = full_contact(s.heights, L, material, V, p_mean)
             if p_ex.min() <= 0:
                 raise RuntimeError(f"{label}: the chosen load does not close every gap")
-            res, cost = metrics.measure(bem.solve, s, material, speed=V, load=p_mean * L**dim, rtol=1e-10)
+            m, v, load = tamper.inputs("bem-periodic", material, V, p_mean * L**dim)
+            res, cost = metrics.measure(bem.solve, s, m, speed=v, load=load, rtol=1e-10)
             out.cost("bem-periodic", label, cost, f"{n}^{dim} points")
             out.check("pressure_rel_max", "bem-periodic", label, metrics.rel_max(res.pressure, p_ex),
                       cfg["tol"], WHY)
             out.check("friction_rel_error", "bem-periodic", label, metrics.rel_diff(res.friction, mu_ex), cfg["tol"], WHY)
             out.check("friction_eq6_rel_error", "bem-periodic", label, metrics.rel_diff(res.friction_eq6, mu_ex),
                       cfg["tol"], WHY)
-            sols.append(dict(surface=s, result=res))
+            sols.append(dict(surface=s, result=res, material=m))
             mu_b.append(res.friction)
             mu_e.append(mu_ex)
             if xi == cfg["xi"][len(cfg["xi"]) // 2]:
@@ -70,7 +71,7 @@ def run_full_contact(*, quick, vtk_dir, root):
     return out
 
 
-def run_westergaard(*, quick, vtk_dir, root):
+def run_westergaard(*, quick, vtk_dir, root, tamper):
     E, nu, g0, lam = 1e7 / 3, 0.5, 1e-6, L
     material = bem.Material.elastic(E, nu)
     cfg = QUICK_WEST if quick else FULL_WEST
@@ -82,7 +83,8 @@ def run_westergaard(*, quick, vtk_dir, root):
     for frac in cfg["fractions"]:
         ex = westergaard(g0, lam, frac * p_star, E, nu)
         surface = surfaces.sinusoid(n, L, amplitude=g0)
-        res, cost = metrics.measure(bem.solve, surface, material, speed=0.0, load=ex.load, rtol=1e-10)
+        m, v, load = tamper.inputs("bem-periodic", material, 0.0, ex.load)
+        res, cost = metrics.measure(bem.solve, surface, m, speed=v, load=load, rtol=1e-10)
         label = f"p/p*={frac:g}"
         out.cost("bem-periodic", label, cost, f"n = {n}")
         p_ex = ex.pressure(x)
@@ -105,13 +107,13 @@ def run_westergaard(*, quick, vtk_dir, root):
         out.profiles.append(Profile(label, {"exact": (xs, np.roll(p_ex, n // 2)),
                                             "bem-periodic": (xs, np.roll(res.pressure, n // 2))},
                                     reference="exact", errors={"bem-periodic": (xs, np.roll(res.pressure - p_ex, n // 2))}))
-        sols.append(dict(surface=surface, result=res))
+        sols.append(dict(surface=surface, result=res, material=m))
     if vtk_dir is not None:
         out.files += write_bem_sweep(vtk_dir / "bem", root, sols, cfg["fractions"])
     return out
 
 
-def run_dense(*, quick, vtk_dir, root):
+def run_dense(*, quick, vtk_dir, root, tamper):
     material = bem.Material.elastic(1e7 / 3)
     cfg = QUICK_DENSE if quick else FULL_DENSE
     out = CaseOutput()
@@ -119,10 +121,12 @@ def run_dense(*, quick, vtk_dir, root):
     for dim, n, overlap in cfg["grids"]:
         s = _rough(n, dim, seed=3)
         label = f"{dim}-D n={n}"
-        (p, delta, pivots), cost = metrics.measure(dense_contact, s.heights, L, material, overlap * np.ptp(s.heights))
+        (p, delta, pivots), cost = tamper.reference(("dense", dim, n), metrics.measure, dense_contact, s.heights, L,
+                                                    material, overlap * np.ptp(s.heights))
         out.cost("dense", label, cost, f"{n}^{dim} unknowns, {pivots} pivots")
         load = float(p.mean() * L**dim)
-        res, cost = metrics.measure(bem.solve, s, material, speed=0.0, load=load, rtol=1e-12)
+        m, v, load = tamper.inputs("bem-periodic", material, 0.0, load)
+        res, cost = metrics.measure(bem.solve, s, m, speed=v, load=load, rtol=1e-12)
         out.cost("bem-periodic", label, cost, f"{res.iterations} iterations")
         out.check("pressure_rel_max", "bem-periodic", label, metrics.rel_max(res.pressure, p), cfg["tol"], WHY_DENSE)
         out.check("approach_rel_error", "bem-periodic", label, metrics.rel_diff(res.approach, delta), cfg["tol"],
@@ -135,7 +139,7 @@ def run_dense(*, quick, vtk_dir, root):
         out.profiles.append(Profile(f"{label} (line y = 0)", {"dense": (x, _line(p)),
                                                              "bem-periodic": (x, _line(res.pressure))},
                                     reference="dense", errors={"bem-periodic": (x, _line(res.pressure - p))}))
-        sols.append(dict(surface=s, result=res))
+        sols.append(dict(surface=s, result=res, material=m))
     if vtk_dir is not None:
         out.files += write_bem_sweep(vtk_dir / "bem", root, sols, list(range(len(sols))))
     return out

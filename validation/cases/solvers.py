@@ -72,25 +72,49 @@ def bem_periodic_cylinder(material, *, radius, load, speed, cells):
         raise RuntimeError("the cylinder touches the solid where its profile is flattened; raise FLAT")
     trail, lead = sampled_edges(x, res.pressure)
     return dict(success=True, x=x, pressure=res.pressure, spacing=dx, trailing_edge=trail, leading_edge=lead,
-                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res,
+                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res, material=material,
                 surface=surface, origin=(float(x[0]), 0.0), detail=f"n = {n}, dx = {dx:.3e} m")
 
 
-def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None):
+def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None, **options):
     """scikit-fem steady rolling (:func:`fem_reference.rolling_cylinder`).
 
     ``friction`` is the field-dissipation form (the BEM's ``friction`` is the dissipation
     form too); the moment form is kept as ``friction_moment``. Edges are the FEM's own
-    (extrapolated) ones; ``spacing`` is the 9-node element size."""
+    (extrapolated) ones; ``spacing`` is the 9-node element size. ``success`` is the solver's
+    own; ``contact_residual`` is recomputed from the displacement field
+    (:func:`fem_reference.fields.contact_residual`), ``linear_residual`` is the solver's
+    ``||K u - f|| / ||f||`` when it reports one. ``options`` go to ``rolling_cylinder``."""
     import fem_reference
+    from fem_reference.fields import contact_residual
 
     res = fem_reference.rolling_cylinder(material, radius=radius, load=load, speed=speed,
-                                         resolution=resolution, vtk=vtk)
+                                         resolution=resolution, vtk=vtk, keep_fields=True, **options)
     friction = res.friction_dissipation if speed > 0 else res.friction
-    return dict(success=True, x=res.x, pressure=res.pressure, spacing=res.element_size,
-                trailing_edge=res.trailing_edge, leading_edge=res.leading_edge, friction=friction,
-                friction_moment=res.friction, peak_pressure=res.peak_pressure, result=res,
-                detail=f"{res.n_unknowns} unknowns, h = {res.element_size:.3e} m")
+    t = res.timings
+    detail = (f"{res.n_unknowns} unknowns, h = {res.element_size:.3e} m; "
+              + ", ".join(f"{k} {v:.2g} s" for k, v in t.items()))
+    out = dict(success=bool(res.success), residual=float(res.residual), message=res.message,
+               x=res.x, pressure=res.pressure, spacing=res.element_size,
+               trailing_edge=res.trailing_edge, leading_edge=res.leading_edge, friction=friction,
+               friction_moment=res.friction, peak_pressure=res.peak_pressure,
+               contact_residual=contact_residual(res), linear_residual=_linear_residual(res),
+               power_fields=res.friction_dissipation * load * speed, power_moment=res.friction * load * speed,
+               timings=dict(t), n_unknowns=int(res.n_unknowns), detail=detail)
+    out["result"] = _without_fields(res)
+    return out
+
+
+def _linear_residual(res):
+    """The solver's ``||K u - f|| / ||f||``, or None when this FEM does not report it."""
+    value = getattr(res, "linear_residual", None)
+    return None if value is None or not np.isfinite(value) else float(value)
+
+
+def _without_fields(res):
+    from dataclasses import replace
+
+    return replace(res, fields={})
 
 
 def bem_periodic_sphere(material, *, radius, load, speed, cells, cell_radii=8.0):
@@ -117,7 +141,7 @@ def bem_periodic_sphere(material, *, radius, load, speed, cells, cell_radii=8.0)
     line = res.pressure[:, n // 2]
     trail, lead = sampled_edges(x, line)
     return dict(success=True, x=x, pressure=line, spacing=dx, trailing_edge=trail, leading_edge=lead,
-                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res,
+                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res, material=material,
                 surface=surface, field=res.pressure, X=X, Y=Y, origin=(float(x[0]), float(x[0])),
                 detail=f"{n}^2 cells, dx = {dx:.3e} m")
 
@@ -134,7 +158,8 @@ def _isolated(surface, material, load, speed, method, dx, line, origin):
     p = res.pressure if res.pressure.ndim == 1 else line(res.pressure)
     trail, lead = sampled_edges(x, p)
     return dict(success=True, x=x, pressure=p, spacing=dx, trailing_edge=trail, leading_edge=lead,
-                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res, surface=surface,
+                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res, material=material,
+                surface=surface,
                 field=res.pressure, origin=origin(x), detail=f"{method}, n = {n}, dx = {dx:.3e} m")
 
 

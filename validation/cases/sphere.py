@@ -38,24 +38,26 @@ SPHERE_BEM = {"bem-periodic": bem_periodic_sphere, "bem-isolated-uniform": _isol
               "bem-isolated-adaptive": _isolated("adaptive")}
 
 
-def _fem_indentation(material, times, resolution, steps_per_decade):
+def _fem_indentation(material, times, resolution, steps_per_decade, load=P, vtk=None):
     import fem_reference
 
-    return fem_reference.indentation(material, radius=R, load=P, times=np.asarray(times, float),
-                                     resolution=resolution, steps_per_decade=steps_per_decade)
+    return fem_reference.indentation(material, radius=R, load=load, times=np.asarray(times, float),
+                                     resolution=resolution, steps_per_decade=steps_per_decade, vtk=vtk)
 
 
 def _a0(material):
     return point_contact(material.E0, material.nu, R, P).a
 
 
-def run_sphere(*, quick, vtk_dir, root):
+def run_sphere(*, quick, vtk_dir, root, tamper):
     material = sls(3)
     cfg = QUICK_SPHERE if quick else FULL_SPHERE
     lam = float(material.creep_times[0])
     out = CaseOutput()
     # --- FEM: both elastic limits from one step-load run
-    fem, cost = metrics.measure(_fem_indentation, material, [0.0, 1000 * lam], cfg["resolution"], 5)
+    # the two elastic limits depend on the moduli and the load only
+    m_fem, _, p_fem = tamper.inputs("fem", material, 0.0, P, insensitive=("times", "speed"))
+    fem, cost = metrics.measure(_fem_indentation, m_fem, [0.0, 1000 * lam], cfg["resolution"], 5, p_fem)
     out.cost("fem", "t=0+, 1000 lambda", cost, f"{fem.n_unknowns} unknowns, h = {fem.element_size:.3e} m")
     t = cfg["tol"]["fem"]
     for i, (label, modulus) in enumerate((("glassy (t=0+)", material.E_inf), ("relaxed (t=1000 lambda)", material.E0))):
@@ -86,7 +88,8 @@ def run_sphere(*, quick, vtk_dir, root):
         for s in points:
             V = s * a0 / lam
             label = "rest" if s == 0 else ("glassy" if s == HIGH_SPEED else f"s={s:g}")
-            b, cost = metrics.measure(adapter, material, radius=R, load=P, speed=V, cells=cfg["cells"])
+            m, v, p = tamper.inputs(name, material, V, P)
+            b, cost = metrics.measure(adapter, m, radius=R, load=p, speed=v, cells=cfg["cells"])
             out.cost(name, label, cost, b["detail"])
             if not out.converged(name, label, b):
                 continue
@@ -112,6 +115,9 @@ def run_sphere(*, quick, vtk_dir, root):
                 mu0 = low_speed_friction(material, radius=R, speed=V)
                 out.check("low_speed_asymptote_rel_error", name, label, metrics.rel_diff(b["friction"], mu0),
                           tb["asymptote"], why["asymptote"])
+                if "excess" in tb:
+                    out.check("low_speed_asymptote_excess", name, label, (b["friction"] - mu0) / mu0, tb["excess"],
+                              why["excess"])
         low = [(s, b["friction"]) for s, b in zip(labels, sols) if s in cfg["s"]]
         if low:
             curves[name] = tuple(np.array(v) for v in zip(*low))
@@ -125,7 +131,7 @@ def run_sphere(*, quick, vtk_dir, root):
     return out
 
 
-def run_creep(*, quick, vtk_dir, root):
+def run_creep(*, quick, vtk_dir, root, tamper):
     """Step load on the sphere: contact radius, approach, peak pressure and the final pressure
     profile against Lee & Radok (:mod:`validation.lee_radok`)."""
     material = sls(3)
@@ -133,11 +139,19 @@ def run_creep(*, quick, vtk_dir, root):
     lam = float(material.creep_times[0])
     times = np.array(cfg["t"]) * lam
     out = CaseOutput()
-    fem, cost = metrics.measure(_fem_indentation, material, times, cfg["resolution"], cfg["steps_per_decade"])
+    m_fem, _, p_fem = tamper.inputs("fem", material, 0.0, P)
+    pvd = None if vtk_dir is None else vtk_dir / "fem" / "creep.pvd"
+    fem, cost = metrics.measure(_fem_indentation, m_fem, times, cfg["resolution"], cfg["steps_per_decade"], p_fem,
+                                pvd)
+    if pvd is not None:
+        out.files += [str(f.relative_to(root)) for f in sorted(pvd.parent.glob("creep_*.vtm"))]
+        out.files.append(str(pvd.relative_to(root)))
     out.cost("fem", "all times", cost, f"{fem.n_unknowns} unknowns, {fem.n_steps} steps, h = {fem.element_size:.3e} m")
     a_ex = lee_radok.contact_radius(material, R, P, times)
     d_ex = lee_radok.approach(material, R, P, times)
-    p_ex = np.array([lee_radok.pressure(material, R, P, tt, [0.0])[0] for tt in times])  # peak: on the axis
+    # the exact maximum over r: an off-axis ring once the contact has crept (r/a ~ 0.9 at higher ratios)
+    p_ex = np.array([lee_radok.pressure(material, R, P, tt, np.linspace(0.0, a, 801)).max()
+                     for tt, a in zip(times, a_ex)])
     t = cfg["tol"]
     for i, tt in enumerate(cfg["t"]):
         label = f"t={tt:g} lambda"
@@ -146,7 +160,7 @@ def run_creep(*, quick, vtk_dir, root):
         out.check("approach_rel_error", "fem", label, metrics.rel_diff(fem.approach[i], d_ex[i]), t["approach"],
                   WHY_FEM["approach"])
         out.check("peak_pressure_rel_error", "fem", label, metrics.rel_diff(fem.peak_pressure[i], p_ex[i]), t["peak"],
-                  WHY_FEM["peak"])
+                  WHY_FEM["peak_creep"])
     td = np.geomspace(1e-2, max(cfg["t"]) * 2, 60) * lam
     a_d = lee_radok.contact_radius(material, R, P, td)
     pos = times > 0
@@ -160,6 +174,8 @@ def run_creep(*, quick, vtk_dir, root):
     p_end = lee_radok.pressure(material, R, P, times[-1], fem.r)
     out.check("pressure_rel_l2", "fem", f"t={cfg['t'][-1]:g} lambda",
               metrics.rel_l2(fem.r, fem.pressure, p_end, weight=fem.r), t["l2"], WHY_FEM["l2"])
+    out.check("axis_pressure_rel_error", "fem", f"t={cfg['t'][-1]:g} lambda",
+              metrics.rel_diff(fem.pressure[0], p_end[0]), t["axis"], WHY_FEM["axis"])
     out.profiles.append(Profile(f"t = {cfg['t'][-1]:g} lambda",
                                 {"Lee-Radok": (xf, lee_radok.pressure(material, R, P, times[-1], xf)),
                                  "fem": (fem.r[keep], fem.pressure[keep])}, reference="Lee-Radok",
@@ -178,7 +194,11 @@ def run_creep(*, quick, vtk_dir, root):
 WHY_FEM = {
     "edge": "edge from extrapolated p^2; measured <= 0.15 element; half an element",
     "approach": "domain truncation a/L ~ 1e-3 plus O(h^2); measured <= 0.27 % (res 4)",
-    "peak": "axis pressure extrapolated in r^2 from two nodes; measured 1.1 % (res 4)",
+    "peak": "axis pressure extrapolated in r^2 from two nodes; measured 0.9-1.1 % (res 4); margin 1.4x",
+    "peak_creep": "largest nodal pressure against the exact maximum over r (on the axis for E_inf/E0 = 3; an "
+                  "off-axis ring at higher ratios); measured 0.5-0.9 % (res 4), 0.10-0.24 % (res 8)",
+    "axis": "axis pressure (extrapolated in r^2) against the exact one on the axis at the last time; "
+            "measured 0.52 % (res 4), 0.13 % (res 8)",
     "l2": "nodal pressures (force / int phi 2 pi r dr) next to the square-root edge: first order in h; "
           "measured 5.8 % (res 4), 2.8 % (res 8), r-weighted",
 }
@@ -191,7 +211,10 @@ WHY_BEM = {
     "peak": "periodic images (a/L)^3 ~ 2e-3 plus O(dx^2); measured 0.25 %",
     "edge": "sampling error half a cell plus the solver's; one cell",
     "asymptote": "discretisation of the edge cells ~ dx^1.5 (measured 1.7 % at 12 cells, 1 % at 16) "
-                 "plus the next-order term ~ 0.67 s",
+                 "plus the next-order term ~ 0.67 s; margin 1.4x (12 cells)",
+    "excess": "signed (mu - mu0) / mu0: the periodic BEM's friction lies below the asymptote at every grid measured "
+              "(-1.6 to -1.8 % at 12 cells, -0.9 to -1.2 % at 16) and the next-order term (-0.67 s) is negative "
+              "too, so an excess above +0.5 % is no discretisation error",
 }
 # Isolated BEM (2-D, DC-FFT; square of 3 a0, dx = a_inf / cells), uniform and adaptive give the same
 # pressures at rest: measured L2 0.82 % / 0.62 % (rest) and 1.56 % / 0.91 % (glassy: fewer cells per radius)
@@ -203,26 +226,26 @@ WHY_BEM = {
 WHY_ISO = {
     "l2": "square-root edge on a square grid ~ dx/a; measured 0.82 % (rest) and 1.56 % (glassy) at 12 cells, "
           "0.62 % / 0.91 % at 16",
-    "peak": "O(dx^2); measured <= 1.5e-3",
+    "peak": "O(dx^2); measured <= 1.5e-3 (12 cells, glassy); margin 2x at 12 cells",
     "edge": "sampling error half a cell plus the solver's; one cell",
-    "asymptote": "collocation ~ dx/a: measured 0.6-1.7 % at s = 1e-3..1e-2 (12-16 cells) plus the "
-                 "next-order term ~ 0.67 s",
+    "asymptote": "collocation ~ dx/a: measured 0.6-1.7 % at s = 1e-3..1e-2 (12-16 cells; 1.2 % at the quick "
+                 "12 cells, s = 1e-2: margin 2.1x) plus the next-order term ~ 0.67 s",
 }
 WHY = {"bem-periodic": WHY_BEM, "bem-isolated-uniform": WHY_ISO, "bem-isolated-adaptive": WHY_ISO}
-_ISO_Q = dict(l2=0.025, peak=0.005, edge=1.0, asymptote=0.04)
+_ISO_Q = dict(l2=0.025, peak=0.003, edge=1.0, asymptote=0.025)
 _ISO_F = dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.03)
 QUICK_SPHERE = dict(s=[1e-2], cells=12, resolution=4,
-                    tol={"fem": dict(edge=0.5, approach=0.005, peak=0.02, l2=0.08),
-                         "bem-periodic": dict(l2=0.02, peak=0.005, edge=1.0, asymptote=0.03),
+                    tol={"fem": dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08),
+                         "bem-periodic": dict(l2=0.02, peak=0.005, edge=1.0, asymptote=0.025, excess=0.005),
                          "bem-isolated-uniform": _ISO_Q, "bem-isolated-adaptive": _ISO_Q})
 FULL_SPHERE = dict(s=[1e-3, 3e-3, 1e-2], cells=16, resolution=8,
                    tol={"fem": dict(edge=0.5, approach=0.004, peak=0.01, l2=0.04),
-                        "bem-periodic": dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.02),
+                        "bem-periodic": dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.02, excess=0.005),
                         "bem-isolated-uniform": _ISO_F, "bem-isolated-adaptive": _ISO_F})
 QUICK_CREEP = dict(t=[0.0, 0.3, 1.0, 3.0, 10.0], resolution=4, steps_per_decade=10,
-                   tol=dict(edge=0.5, approach=0.005, peak=0.02, l2=0.08))
+                   tol=dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08, axis=0.01))
 FULL_CREEP = dict(t=[0.0, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0], resolution=8, steps_per_decade=20,
-                  tol=dict(edge=0.5, approach=0.004, peak=0.015, l2=0.04))
+                  tol=dict(edge=0.5, approach=0.004, peak=0.015, l2=0.04, axis=0.004))
 
 CASES = [
     Case("sphere_hertz", "Sphere: Hertz limits and low-speed friction",

@@ -22,7 +22,8 @@ def write_bem_sweep(folder, root, solutions, values, name="sweep.pvd"):
     files, entries = [], []
     for k, (sol, value) in enumerate(zip(solutions, values)):
         fname = f"point_{k:03d}.vti"
-        surface_grid(sol["surface"], sol["result"], origin=sol.get("origin", (0.0, 0.0))).save(folder / fname)
+        surface_grid(sol["surface"], sol["result"], origin=sol.get("origin", (0.0, 0.0)),
+                     material=sol.get("material")).save(folder / fname)
         files.append(_rel(folder / fname, root))
         entries.append((fname, value))
     write_pvd(folder / name, entries)

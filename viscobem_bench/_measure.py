@@ -4,7 +4,7 @@ Every measured case runs in a fresh interpreter (``multiprocessing`` with the ``
 context), so its peak resident set size is its own and not the high-water mark of an
 earlier case. Thread counts are fixed through the environment before the child imports
 numpy (SPEC §7: on 2 shared cores a multi-threaded BLAS on small vector operations can be
-1000x slower); FFTs keep using all cores through scipy's ``workers=-1`` (:mod:`bem.fft`).
+1000x slower); FFTs keep using all cores (:func:`bem.parallel.get_threads`).
 
 Memory is read from the kernel: ``getrusage(RUSAGE_SELF).ru_maxrss`` (peak, KiB on Linux,
 bytes on macOS) and ``/proc/self/statm`` (current, Linux only).
@@ -98,8 +98,10 @@ def fft_pair_time(shape, **kwargs):
     import numpy as np
     import scipy.fft as sfft
 
+    from bem.parallel import get_threads
+
     x = np.random.default_rng(0).standard_normal(shape)
-    return median_time(lambda: sfft.irfftn(sfft.rfftn(x, workers=-1), s=shape, workers=-1), **kwargs)
+    return median_time(lambda: sfft.irfftn(sfft.rfftn(x, workers=get_threads()), s=shape, workers=get_threads()), **kwargs)
 
 
 def load_average():

@@ -16,10 +16,10 @@ Cases (all SI; R = 10 mm):
   peak pressure, edges over the contact width), with unknowns, assemble / factor /
   flexibility / contact times, linear residual and peak memory.
 
-Each case runs in a fresh interpreter (:func:`benchmarks._measure.run_in_fresh_process`)
+Each case runs in a fresh interpreter (:func:`viscobem_bench._measure.run_in_fresh_process`)
 with BLAS/MKL threads pinned to 2, so its peak resident set size is its own.
 
-Run: ``python -m benchmarks.fem --quick --out DIR`` (writes ``DIR/fem_benchmark.json``).
+Run: ``python -m viscobem_bench.fem --quick --out DIR`` (writes ``DIR/fem_benchmark.json``).
 """
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ import time
 
 import numpy as np
 
-from benchmarks._measure import peak_rss, run_in_fresh_process, thread_environment
+from viscobem_bench._measure import peak_rss, run_in_fresh_process, thread_environment
 
 
 def _peak_rss_mb():
@@ -172,7 +172,7 @@ def _table(rows, cols):
 
 def run(quick: bool = True, out_dir=".") -> dict:
     """Run the benchmark; print tables and write ``out_dir/fem_benchmark.json``."""
-    from fem_reference.linsolve import _pardiso_available
+    from fem_reference.linsolve import pardiso_available
 
     env = thread_environment(2)
 
@@ -185,7 +185,7 @@ def run(quick: bool = True, out_dir=".") -> dict:
     rolling = [fresh(_rolling_case, m, 1.0, n, 30) for n in resolutions]
     rolling += [fresh(_rolling_case, m, 10.0, 3, d) for d in domains]
     rolling += [fresh(_rolling_case, m, 100.0, n, 30, "auto", 2.0) for n in ([3, 5] if quick else [3, 5, 8])]
-    solvers = ["splu"] + (["pardiso"] if _pardiso_available() else [])
+    solvers = ["splu"] + (["pardiso"] if pardiso_available() else [])
     solver_rows = [fresh(_rolling_case, m, 1.0, 4 if quick else 6, 30, s) for s in solvers]
     ind = [fresh(_indentation_case, n, 20) for n in ([4, 6] if quick else [4, 6, 8, 12])]
 

@@ -19,13 +19,13 @@ Solvers: ``bem.solve(..., periodic=False, method="uniform")`` over a range of gr
 ``bem.adaptive.solve_adaptive`` over fine grids and refinement levels (coarse mesh of 32
 strips, or 8 x 8 squares). Error = max(|friction/ref - 1|, |peak pressure/ref - 1|), with
 ``friction`` the dissipation form of each solver. Each case runs in a fresh interpreter with
-BLAS threads pinned to 1 (:mod:`benchmarks._measure`); wall time is that of the solve call
+BLAS threads pinned to 1 (:mod:`viscobem_bench._measure`); wall time is that of the solve call
 (kernel construction included, imports excluded); memory is the child's peak RSS.
 
 Outputs: ``DIR/isolated_benchmark.json`` (all cases, Pareto fronts, the fastest method per
 requested tolerance), ``DIR/isolated_pareto.png`` (error against time, log-log, per problem).
 
-Run: ``python -m benchmarks.isolated [--quick] --out DIR`` or ``viscobem bench isolated``.
+Run: ``python -m viscobem_bench.isolated [--quick] --out DIR`` or ``viscobem bench isolated``.
 """
 from __future__ import annotations
 
@@ -39,7 +39,13 @@ import time
 
 import numpy as np
 
-from benchmarks._measure import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
+from viscobem_bench._measure import (
+    load_average,
+    peak_rss,
+    run_in_fresh_process,
+    source_snapshot,
+    thread_environment,
+)
 
 RADIUS = 0.01
 LOADS = {"cylinder": 1000.0, "sphere": 1.0, "sphere-wide": 1.0, "sphere-xwide": 1.0}
@@ -175,20 +181,13 @@ def _plot(groups, path):
     plt.close(fig)
 
 
-def run(quick: bool = True, out_dir=".", only=None) -> dict:
-    """Run the benchmark; print tables and write JSON + PNG into ``out_dir``.
-
-    ``only``: a list of problem names (keys of ``SPEEDS``) to run instead of all."""
-    problems = list(SPEEDS) if not only else [p for p in SPEEDS if p in only]
-    out = pathlib.Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    env = thread_environment(1)
-    m = _material()
-    rows = []
+def _measure_all(problems, quick, env):
+    """Every (problem, speed, method, grid) case in a fresh process; ``(rows, bem snapshot)``."""
     import tempfile
 
     import bem
 
+    rows = []
     # every case measures the same frozen copy of bem/, even if the tree is edited meanwhile
     with tempfile.TemporaryDirectory() as tmp, source_snapshot(bem, tmp) as snapshot:
         for problem in problems:
@@ -199,33 +198,44 @@ def run(quick: bool = True, out_dir=".", only=None) -> dict:
                 for n, levels in ada:
                     rows.append(run_in_fresh_process(_case, problem, factor, "adaptive", n, levels, env=env))
                 print(f"  {problem} f={factor}: {len(uni) + len(ada)} cases done", flush=True)
+    return rows, snapshot
 
+
+def _reference(problem, factor, sel, m):
+    """Hunter's exact solution for the cylinder, else Richardson extrapolation of the uniform grids."""
     from validation.hunter import rolling_cylinder
 
+    if problem == "cylinder":
+        a0 = _a0(problem, m)
+        ex = rolling_cylinder(m, radius=RADIUS, load=LOADS[problem], speed=factor * a0 / m.creep_times[0])
+        return {"kind": "Hunter (exact)", "friction": ex.friction, "peak_pressure": ex.peak_pressure}
+    uni = [r for r in sel if r["method"] == "uniform"]
+    mu, p_mu, grids = _richardson(uni, "friction")
+    pk, p_pk, _ = _richardson(uni, "peak_pressure")
+    # order None: not monotone, the finest grid's value is the reference
+    return {"kind": "Richardson extrapolation of the uniform grids", "friction": mu,
+            "peak_pressure": pk, "order_friction": p_mu, "order_peak": p_pk, "grids": grids}
+
+
+def _errors(problems, rows, m):
+    """``(references, groups)``: each row's errors against its problem's reference."""
     references, groups = {}, {}
     for problem in problems:
         for factor in SPEEDS[problem]:
             key = f"{problem} V lambda/a0 = {factor:g}"
             sel = [r for r in rows if r["problem"] == problem and r["speed_factor"] == factor]
-            if problem == "cylinder":
-                a0 = _a0(problem, m)
-                ex = rolling_cylinder(m, radius=RADIUS, load=LOADS[problem], speed=factor * a0 / m.creep_times[0])
-                ref = {"kind": "Hunter (exact)", "friction": ex.friction, "peak_pressure": ex.peak_pressure}
-            else:
-                uni = [r for r in sel if r["method"] == "uniform"]
-                mu, p_mu, grids = _richardson(uni, "friction")
-                pk, p_pk, _ = _richardson(uni, "peak_pressure")
-                # order None: not monotone, the finest grid's value is the reference
-                ref = {"kind": "Richardson extrapolation of the uniform grids", "friction": mu,
-                       "peak_pressure": pk, "order_friction": p_mu, "order_peak": p_pk, "grids": grids}
+            ref = _reference(problem, factor, sel, m)
             for r in sel:
                 r["friction_error"] = abs(r["friction"] / ref["friction"] - 1)
                 r["peak_error"] = abs(r["peak_pressure"] / ref["peak_pressure"] - 1)
                 r["error"] = max(r["friction_error"], r["peak_error"])
             references[key] = ref
             groups[key] = sel
+    return references, groups
 
-    # which is faster at each tolerance, per problem; and time ratio at the same fine grid
+
+def _compare(groups):
+    """Which method is faster at each tolerance, per problem; and both at the same fine grid."""
     choice = []
     for key, sel in groups.items():
         for tol in TOLERANCES:
@@ -237,15 +247,16 @@ def run(quick: bool = True, out_dir=".", only=None) -> dict:
     same_grid = []
     for key, sel in groups.items():
         for r in sel:
-            if r["method"] != "adaptive":
-                continue
             u = [q for q in sel if q["method"] == "uniform" and q["n"] == r["n"]]
-            if u:
+            if r["method"] == "adaptive" and u:
                 same_grid.append({"problem": key, "n": r["n"], "levels": r["levels"], "elements": r["elements"],
                                   "uniform_s": u[0]["wall_s"], "adaptive_s": r["wall_s"],
                                   "uniform_error": u[0]["error"], "adaptive_error": r["error"],
                                   "uniform_rss_mb": u[0]["peak_rss_mb"], "adaptive_rss_mb": r["peak_rss_mb"]})
+    return choice, same_grid
 
+
+def _print_tables(groups, choice):
     print(f"\n{'problem':32s} {'method':9s} {'n':>6s} {'lev':>3s} {'elem':>8s} {'mu err':>9s} {'peak err':>9s} "
           f"{'wall s':>8s} {'RSS MB':>7s}")
     for key, sel in groups.items():
@@ -257,11 +268,24 @@ def run(quick: bool = True, out_dir=".", only=None) -> dict:
         fmt = (lambda v: f"{v:10.3f}" if v is not None else f"{'-':>10s}")
         print(f"{c['problem']:32s} {c['tolerance']:7.0e} {fmt(c['uniform_s'])} {fmt(c['adaptive_s'])}  {c['faster']}")
 
+
+def run(quick: bool = True, out_dir=".", only=None) -> dict:
+    """Run the benchmark; print tables and write JSON + PNG into ``out_dir``.
+
+    ``only``: a list of problem names (keys of ``SPEEDS``) to run instead of all."""
+    import subprocess
+
+    problems = list(SPEEDS) if not only else [p for p in SPEEDS if p in only]
+    out = pathlib.Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    m = _material()
+    rows, snapshot = _measure_all(problems, quick, thread_environment(1))
+    references, groups = _errors(problems, rows, m)
+    choice, same_grid = _compare(groups)
+    _print_tables(groups, choice)
     fronts = {key: {method: _pareto([(r["wall_s"], r["error"], r["n"]) for r in sel if r["method"] == method])
                     for method in ("uniform", "adaptive")} for key, sel in groups.items()}
     _plot(groups, out / "isolated_pareto.png")
-    import subprocess
-
     head = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True,
                           cwd=pathlib.Path(__file__).parent).stdout.strip() or None
     result = {"quick": quick, "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),

@@ -1,9 +1,9 @@
 """Cost of the periodic benchmark's 20-term rubber over sliding speed (issue 2).
 
-Run it with ``python -m benchmarks.rubber_speeds [--quick] --out DIR`` (or ``viscobem bench
+Run it with ``python -m viscobem_bench.rubber_speeds [--quick] --out DIR`` (or ``viscobem bench
 rubber_speeds``). It prints a table and writes ``DIR/rubber_speeds.json`` and ``.md``.
 
-The periodic benchmark (:mod:`benchmarks.periodic`) measures the rubber (E_inf/E0 = 1000,
+The periodic benchmark (:mod:`viscobem_bench.periodic`) measures the rubber (E_inf/E0 = 1000,
 20 Prony terms) at one speed, xi = 1e-2 on its longest creep time, where it needs 4-7x the
 elastic case's operator products. This one asks whether that is the speed or the material:
 the same surface and rubber at xi = v tau / L from 1e-6 (rubbery) to 1e4 (glassy for every
@@ -22,8 +22,14 @@ import numpy as np
 
 import bem
 from bem.sliding import operator_for
-from benchmarks.periodic import (LENGTH, TARGET_CONTACT, _table, load_for_contact, materials, publish,
-                                 surface_heights)
+from viscobem_bench.periodic_problem import (
+    LENGTH,
+    TARGET_CONTACT,
+    load_for_contact,
+    materials,
+    surface_heights,
+)
+from viscobem_bench.periodic_report import publish, table
 
 XIS = (1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4)
 SIZES, QUICK_SIZES, QUICK_XIS = (256, 512), (64, 128), (1e-4, 1e-2, 1e4)
@@ -110,11 +116,11 @@ def _report(result, markdown=False):
     return "\n\n".join([("# " if markdown else "") + title,
                         f"rtol {result['rtol']:g}; each load gives about {result['target_contact_fraction']:.0%} "
                         f"contact on {sizes[0]}²; xi = v tau / L, tau = {result['longest_creep_time_s']:.4g} s",
-                        _table(headers, rows, markdown), f"total time {result['total_time']:.0f} s"])
+                        table(headers, rows, markdown), f"total time {result['total_time']:.0f} s"])
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m benchmarks.rubber_speeds", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m viscobem_bench.rubber_speeds", description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help=f"n = {QUICK_SIZES}, xi = {QUICK_XIS} (smoke test)")
     parser.add_argument("--sizes", type=int, nargs="+", help=f"grid sizes (default {SIZES})")
     parser.add_argument("--xi", type=float, nargs="+", help=f"dimensionless speeds (default {XIS})")

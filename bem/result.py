@@ -1,0 +1,69 @@
+"""The result of one steady sliding solve, :class:`SlidingResult`, shared by every solver."""
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["SlidingResult"]
+
+
+@dataclass(frozen=True, eq=False)
+class SlidingResult:
+    """Steady sliding contact solution (arrays shaped like the heights).
+
+    Attributes
+    ----------
+    pressure : ndarray
+        Contact pressure (Pa), >= 0.
+    displacement : ndarray
+        Normal surface displacement (m, positive into the solid). Periodic cells: zero mean
+        (the periodic half-space has no defined mean displacement; the approach carries it).
+        Isolated 2-D contacts: absolute (zero at infinity); isolated profiles: up to the
+        constant of plane strain (see :mod:`bem.isolated`).
+    gap : ndarray
+        ``displacement - (h - max(h) + approach)`` (m), >= 0, zero in contact.
+    approach : float
+        Rigid approach from first touch (m): relative to the mean plane of the deformed
+        surface on periodic cells, to the undeformed surface far away for isolated 2-D
+        contacts, and with the displacement's constant for isolated profiles.
+    contact_fraction : float
+        Fraction of the cell (isolated contacts: of the domain) in contact (``pressure > 0``).
+    friction, friction_eq6 : float
+        Viscoelastic friction coefficient, dissipation form and eq. 6 (see module doc).
+    dissipated_power : float
+        ``friction * load * speed`` (W; W/m for profiles).
+    load, speed : float
+        Normal force (N; N/m for profiles) and sliding speed (m/s).
+    iterations, matvecs : int
+        Active-set iterations and operator applications (FFT pairs).
+    residual : float
+        Complementarity residual reached (see :mod:`bem.contact`).
+    success : bool
+    message : str
+    wall_time : float
+        Seconds spent in the solve.
+    """
+
+    pressure: np.ndarray
+    displacement: np.ndarray
+    gap: np.ndarray
+    approach: float
+    contact_fraction: float
+    friction: float
+    friction_eq6: float
+    dissipated_power: float
+    load: float
+    speed: float
+    iterations: int
+    matvecs: int
+    residual: float
+    success: bool
+    message: str
+    wall_time: float = 0.0
+
+    def __repr__(self):
+        """One line: the scalars and the fields' shape, never the arrays themselves."""
+        status = "converged" if self.success else "NOT converged"
+        return (f"{type(self).__name__}({status}, shape={self.pressure.shape}, speed={self.speed:.6g} m/s, "
+                f"load={self.load:.6g}, friction={self.friction:.6g}, friction_eq6={self.friction_eq6:.6g}, "
+                f"contact_fraction={self.contact_fraction:.6g}, approach={self.approach:.6g} m, "
+                f"iterations={self.iterations}, matvecs={self.matvecs}, residual={self.residual:.3g})")

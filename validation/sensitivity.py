@@ -1,0 +1,100 @@
+"""Sensitivity of the validation checks: does each case catch deliberately wrong inputs?
+
+For every case and every :data:`validation.perturb.PERTURBATIONS` entry the case is rerun with
+its solvers under test fed the wrong input (references keep the true one; their results are
+reused between the reruns). A perturbation is *detected* for a solver when at least one judged
+check attributed to that solver fails (a comparison ``"A vs B"`` is attributed to ``A``, the
+solver under test); ``by`` lists those checks' metrics. It is *required* when it changed the
+solver's inputs: every such perturbation changes the physics the checks compare, so an
+undetected one means a tolerance too loose for the discretisation error it guards.
+
+Entries: ``{case, solver, perturbation, detected, by, required}``; a case that raises under a
+perturbation counts as detected by ``error``.
+"""
+from __future__ import annotations
+
+import logging
+
+from .cases import CASES
+from .perturb import NONE, PERTURBATIONS, Tamper
+from .runner import select
+
+__all__ = ["run_sensitivity", "summary"]
+log = logging.getLogger(__name__)
+
+
+def _owner(solver):
+    return solver.split(" vs ")[0]
+
+
+def _case_entries(name, quick, progress):
+    case = CASES[name]
+    cache = {}
+    base = Tamper(NONE, cache)
+    out = case(quick=quick, vtk_dir=None, root=None, tamper=base)
+    failing_base = {c.key for c in out.checks if not c.passed}
+    entries = []
+    for pert in PERTURBATIONS:
+        tamper = Tamper(pert, cache)
+        try:
+            res = case(quick=quick, vtk_dir=None, root=None, tamper=tamper)
+        except Exception as err:  # noqa: BLE001 -- a solver that breaks on a wrong input has been caught
+            log.info("case %s raised under %s: %s", name, pert.name, err)
+            for solver in sorted(tamper.changed):
+                entries.append(dict(case=name, solver=solver, perturbation=pert.name, detected=True,
+                                    by=[f"error: {type(err).__name__}"], required=True))
+            continue
+        by = {}
+        for c in res.checks:
+            if c.judged and not c.passed and c.key not in failing_base:
+                by.setdefault(_owner(c.solver), set()).add(c.metric)
+        for solver in _solvers_under_test(res, tamper):
+            found = sorted(by.get(solver, ()))
+            entries.append(dict(case=name, solver=solver, perturbation=pert.name, detected=bool(found), by=found,
+                                required=solver in tamper.changed))
+        if progress:
+            log.info("sensitivity %s %s: %s", name, pert.name, {s: sorted(v) for s, v in by.items()})
+    return entries, sorted(failing_base)
+
+
+def _solvers_under_test(res, tamper):
+    judged = {_owner(c.solver) for c in res.checks if c.judged}
+    return sorted(judged | tamper.changed)
+
+
+def run_sensitivity(names, *, quick, progress=True):
+    """Rerun the named cases (all if empty) under every perturbation; returns ``(entries,
+    base_failures)`` with ``base_failures[case]`` the checks that fail without perturbation
+    (those cannot show a detection and are left out of ``by``)."""
+    from tqdm.auto import tqdm
+
+    entries, base = [], {}
+    for name in tqdm(select(names), desc="sensitivity", unit="case", disable=not progress):
+        e, failing = _case_entries(name, quick, progress)
+        entries += e
+        base[name] = failing
+    return entries, base
+
+
+def summary(entries):
+    """``(missed, n_required)``: the required perturbations no check caught, and how many there are."""
+    required = [e for e in entries if e["required"]]
+    return [e for e in required if not e["detected"]], len(required)
+
+
+def attach(record, names, *, quick, progress=True):
+    """Run :func:`run_sensitivity` and store it in ``record["sensitivity"]`` (the entries) and
+    ``record["sensitivity_base_failures"]``; returns the entries."""
+    entries, base = run_sensitivity(names, quick=quick, progress=progress)
+    record["sensitivity"] = entries
+    record["sensitivity_base_failures"] = base
+    return entries
+
+
+def print_summary(record):
+    """Print the perturbations no check caught; returns 1 if there are any, else 0."""
+    missed, n = summary(record["sensitivity"])
+    for e in missed:
+        print(f"  UNDETECTED {e['case']}: {e['solver']} with {e['perturbation']} passes every check")
+    print(f"  sensitivity: {n - len(missed)}/{n} perturbations that change a solver's inputs detected")
+    return 1 if missed else 0

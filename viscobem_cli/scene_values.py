@@ -1,0 +1,90 @@
+"""Checks of single scene values: numbers, loads, the [solver] and [outputs] tables, and
+``--set`` overrides. Each raises :class:`~bem.errors.InputError` naming the key, its valid
+range and the value received."""
+import sys
+
+import numpy as np
+
+from bem.errors import InputError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = ["number", "loads", "solver", "outputs", "override"]
+
+
+def number(section, key, value):
+    """``float(value)`` for a TOML number (not a bool or string), else InputError naming it."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise InputError(f"[{section}] {key} must be a number, got {value!r}")
+    return float(value)
+
+
+def outputs(t, surface):
+    """The [outputs] booleans with their defaults, and the fields' precision (keys already checked)."""
+    outputs = {"friction_curve": True, "fields": True, "plots": True, "vtk": False,
+               "anisotropy": False, "contact_psd": False, "persson": False}
+    outputs.update(t)
+    precision = outputs.pop("fields_precision", "float32")
+    if precision not in ("float32", "float64"):
+        raise InputError(f"[outputs] fields_precision must be 'float32' or 'float64', got {precision!r}")
+    for key, value in outputs.items():
+        if not isinstance(value, bool):
+            raise InputError(f"[outputs] {key} must be true or false, got {value!r}")
+    for key in ("anisotropy", "contact_psd", "persson"):
+        if outputs[key] and surface.ndim != 2:
+            raise InputError(f"[outputs] {key} needs a 2-D surface (dim = 2), got a 1-D profile")
+    return outputs, precision
+
+
+def loads(value):
+    values = value if isinstance(value, list) else [value]
+    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf
+                             for v in values):
+        raise InputError(f"[loading] load must be a finite number > 0 or a non-empty list of them "
+                         f"(N; N/m for 1-D profiles), got {value!r}")
+    return tuple(float(v) for v in values)
+
+
+def solver(t):
+    def integer(key, default, low):
+        v = t.get(key, default)
+        if isinstance(v, bool) or not isinstance(v, int) or v < low:
+            raise InputError(f"[solver] {key} must be an integer >= {low}, got {v!r}")
+        return v
+
+    rtol = number("solver", "rtol", t.get("rtol", 1e-8))
+    if not 0 < rtol < 1:
+        raise InputError(f"[solver] rtol must be in (0, 1), got {rtol!r}")
+    warm = t.get("warm_start", True)
+    if not isinstance(warm, bool):
+        raise InputError(f"[solver] warm_start must be true or false, got {warm!r}")
+    fold = t.get("fold_tol", 1e-6)
+    if not (isinstance(fold, (int, float)) and 0 <= fold < 1):
+        raise InputError(f"[solver] fold_tol must be in [0, 1) (0: no folding), got {fold!r}")
+    scheduler = t.get("scheduler")
+    if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
+        raise InputError(f"[solver] scheduler must be an address such as 'tcp://host:8786', got {scheduler!r}")
+    return {"rtol": float(rtol), "maxiter": integer("maxiter", 400, 1),
+            "warm_start": warm, "workers": integer("workers", 1, 1),
+            "chunk": integer("chunk", 0, 0), "scheduler": scheduler, "fold_tol": float(fold)}
+
+
+def override(raw, item):
+    """Apply one ``section.key=value`` override (TOML value; a bare word is a string) to ``raw``."""
+    path, sep, value = str(item).partition("=")
+    keys = [k.strip() for k in path.split(".")]
+    if not sep or not all(keys):
+        raise InputError(f"--set needs section.key=value (e.g. surface.n=64), got {item!r}")
+    try:
+        parsed = tomllib.loads(f"v = {value.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        parsed = value.strip()
+    table = raw
+    for key in keys[:-1]:
+        table = table.setdefault(key, {})
+        if not isinstance(table, dict):
+            raise InputError(f"--set {item!r}: {key!r} is not a table")
+    table[keys[-1]] = parsed
