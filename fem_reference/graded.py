@@ -68,7 +68,7 @@ def initial_edges(material, radius, load, speed):
     return -a, a
 
 
-def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=0.1):
+def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=0.01):
     """A :class:`~fem_reference.mesh.HalfSpaceMesh` graded toward the contact ``edges``.
 
     Parameters
@@ -98,6 +98,6 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
     h_lead = h_edge if ell.size == 0 else float(np.clip(ell.min() / 2, layer_floor * h_edge, h_edge))
     caps = [(trail, lead, h_edge)]
     x = graded_coordinates(-length, length, [trail, lead], [h_edge, h_lead], ratio=ratio, caps=caps)
-    y = graded_coordinates(-length, 0.0, [0.0], [h_edge], ratio=ratio)
+    y = graded_coordinates(-length, 0.0, [0.0], [h_lead], ratio=ratio)
     mesh = half_space_boundaries(x, y)
     return HalfSpaceMesh(mesh, x, y, float(min(h_lead, h_edge)), (float(x[0]), float(x[-1])), float(-y[0]))

@@ -133,10 +133,10 @@ def test_rubber_against_isolated_bem_at_friction_peak():
     # 8-term Prony rubber, E_inf/E0 = 300 (relaxation times 1e-5..1e-1 s, equal moduli),
     # R = 20 mm, P = 1500 N/m, at the isolated BEM's friction peak (V = 1.67e-3 m/s; the
     # BEM on 2^12 / 2^13 / 2^14 points agrees to 1e-6 in friction and 6e-5 in peak
-    # pressure). Graded FEM at 6 elements per contact half-width (8.6k unknowns, about
-    # 85 s), measured: friction -0.72 % (dissipation form) and -1.5 % (moment form), peak
-    # pressure +2.2 %, edges -1.0 % / -1.2 % of the contact width. Tolerances 1 %, 2 %,
-    # 3 % and 2 % (margins 1.4, 1.3, 1.4, 1.7).
+    # pressure). Graded FEM at 6 elements per contact half-width (18k unknowns, about
+    # 100 s), measured: friction -0.69 % (dissipation form) and -1.5 % (moment form), peak
+    # pressure +0.26 %, edges -0.9 % of the contact width. Tolerances 1 %, 2 %, 3 % and
+    # 2 % (margins 1.4, 1.35, 11, 2.2).
     import bem
     from bem.surfaces import cylinder
 
