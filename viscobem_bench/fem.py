@@ -150,7 +150,7 @@ def rubber_rows(quick=True, fresh=None):
     for terms, ratio in ([(8, 300.0)] if quick else [(8, 300.0), (20, 1000.0)]):
         peak = _rubber_peak_speed(terms, ratio)
         for speed in (peak, peak / 10):
-            rows.append(fresh(_rubber_case, terms, ratio, speed, 3 if quick else 4))
+            rows.append(fresh(_rubber_case, terms, ratio, speed, 6))
     cols = ["terms", "ratio", "speed", "unknowns", "passes", "friction_error", "dissipation_friction_error",
             "peak_pressure_error", "leading_edge_error_over_width", "trailing_edge_error_over_width",
             "factor_s", "flexibility_s", "wall_s", "linear_residual", "peak_rss_mb"]
