@@ -56,7 +56,7 @@ class FrictionCurve:
 
 
 def sweep(surfaces, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True, periodic=True,
-          method="auto", skip=None, on_point=None, keep=True):
+          method="auto", skip=None, on_point=None, keep=True, direction=0.0):
     """Solve every surface at every speed, in increasing speed, warm-starting each surface.
 
     Parameters
@@ -94,7 +94,8 @@ def sweep(surfaces, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_star
             start = previous[r] if warm_start and method != "adaptive" else None
             try:
                 res = sliding.solve(surface, material, speed=float(speeds[i]), load=load, rtol=rtol,
-                                    maxiter=maxiter, initial=start, periodic=periodic, method=method)
+                                    maxiter=maxiter, initial=start, periodic=periodic, method=method,
+                                    direction=direction)
             except ConvergenceError as err:
                 res, message = None, str(err)
                 log.warning("%s", err)
@@ -127,7 +128,7 @@ def _loads(load):
 
 
 def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
-                   progress=False, callback=None, periodic=True, method="auto"):
+                   progress=False, callback=None, periodic=True, method="auto", direction=0.0):
     """Friction against speed: solve at each speed, warm-starting from the neighbour.
 
     Parameters
@@ -142,9 +143,9 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
         ``callback(index, speed, result_or_None, message)`` after each point (with a list of
         loads, ``index`` counts the points of all loads: ``load_index * len(speeds) + i``);
         a point that fails to converge is reported with ``None`` and the sweep goes on.
-    periodic, method, rtol, maxiter
-        As in :func:`bem.solve` (``periodic=False``: isolated contact). The warm start is
-        skipped for ``method="adaptive"``.
+    periodic, method, rtol, maxiter, direction
+        As in :func:`bem.solve` (``periodic=False``: isolated contact; ``direction``: sliding
+        direction, radians from +x). The warm start is skipped for ``method="adaptive"``.
 
     Returns
     -------
@@ -175,7 +176,7 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
 
             results, messages = sweep([surface], material, speeds=speeds, load=f_n, rtol=rtol, maxiter=maxiter,
                                       warm_start=warm_start, periodic=periodic, method=method,
-                                      on_point=on_point)
+                                      on_point=on_point, direction=direction)
             curves.append(_curve(speeds, results[0], messages[0], f_n))
     return curves if several else curves[0]
 
