@@ -7,8 +7,11 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
     title = "..."                      # optional
     [material]   nu = 0.5 and one of:  E  |  E0, E_inf, creep_time | relaxation_time
                  |  E0, moduli, times (Prony)  |  E0, compliances, times (creep)
-                 |  dma = "file.csv" (columns: frequency, storage E' (Pa), loss E'' (Pa);
-                    dma_frequency_unit = "rad/s" | "Hz"; dma_terms_per_decade = 2.0)
+                 |  dma = "file.csv" (columns: frequency, storage E', loss E'' [, temperature];
+                    dma_frequency_unit = "rad/s" | "Hz"; dma_modulus_unit = "Pa" | "kPa" | "MPa" | "GPa";
+                    dma_temperature_unit = "K" | "C"; dma_terms_per_decade = 3.0)
+                 shift = { law = "wlf", C1, C2, reference_temperature (K) } | { law = "arrhenius",
+                    activation_energy (J/mol), reference_temperature (K) }  (see viscobem_cli.temperatures)
     [surface]    kind = "self_affine" | "sinusoid" | "file" | "sphere" | "cylinder", length (m),
                  n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
@@ -17,9 +20,13 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
                  file:        path (.npy/.txt/.csv, relative to the scene file), unit
                  sphere, cylinder: radius (m), exact (default false: paraboloid); an isolated
                               indenter centred in a domain of side length (2-D map / 1-D profile)
+                 measured:    path (any instrument format), n, detrend, boundary, window, alpha,
+                              unit, scan_size, channel (viscobem_cli.measured_scene)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
-                 material's longest creep time)
+                 material's longest creep time); temperatures = [...] (K; needs a shift law);
+                 direction_deg (sliding direction from +x toward +y, degrees; a list sweeps it:
+                 viscobem_cli.directions)
     [solver]     rtol, maxiter, warm_start, workers (processes, default 1), chunk (speeds per
                  task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol,
                  periodic (default false for sphere and cylinder, true otherwise),
@@ -38,8 +45,7 @@ from bem import Material, surfaces
 from bem.checks import check_positive
 from bem.errors import InputError
 
-from . import guidance
-from . import scene_values
+from . import guidance, scene_values, temperatures
 from .catalog import SCENE_DIR, builtin_scenes, scene_path
 
 __all__ = ["Scene", "parse", "load", "describe_xi", "builtin_scenes", "SCENE_DIR", "DEFAULT_SCENE", "SCHEMA",
@@ -54,18 +60,20 @@ else:  # pragma: no cover
 SCHEMA = {
     "": {"title", "material", "surface", "loading", "solver", "outputs", "analysis"},
     "material": {"nu", "E", "E0", "E_inf", "creep_time", "relaxation_time", "moduli", "times",
-                 "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade"},
+                 "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade",
+                 "dma_modulus_unit", "dma_temperature_unit", "shift"},
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
                 "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
-                "realisations", "radius", "exact"},
-    "loading": {"load", "speeds", "xi", "xi_time"},
+                "realisations", "radius", "exact",
+                "detrend", "boundary", "window", "alpha", "scan_size", "channel"},  # kind = "measured"
+    "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
     "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
                "method"},
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson",
                 "fields_precision"},
     "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
-SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder")
+SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder", "measured")
 INDENTER_KINDS = ("sphere", "cylinder")  # isolated indenters: periodic = false by default
 DEFAULT_SCENE = scene_path(None)
 MIN_POINTS_PER_WAVELENGTH = 4  # fewer: the two friction forms drift apart (a warning)
@@ -103,11 +111,20 @@ class Scene:
     xi_time_source: str = ""
     warnings: tuple = ()  # texts that explain a doubtful setting and what to change
     fields_precision: str = "float32"
+    shift: object = None  # time-temperature shift law (bem.temperature), or None
+    temperatures: tuple = ()  # K; a sweep per temperature when given
+    dma: dict = field(default=None, repr=False)  # the DMA table in SI (viscobem_cli.temperatures.read_dma)
+    directions: tuple = (0.0,)  # sliding directions (radians), see viscobem_cli.directions
 
     @property
     def kind(self):
         """The surface kind ("self_affine", "sphere", ...)."""
         return self.raw.get("surface", {}).get("kind", "")
+
+    @property
+    def direction(self):
+        """The sliding direction of a single-direction study (radians)."""
+        return self.directions[0]
 
     def __post_init__(self):
         if not self.realisations:
@@ -153,20 +170,7 @@ def _material(t, base):
         return Material.from_prony(E0=t["E0"], moduli=t["moduli"], times=t.get("times", []), nu=nu)
     if kind == "creep":
         return Material.from_creep(E0=t["E0"], compliances=t["compliances"], times=t.get("times", []), nu=nu)
-    if not isinstance(t["dma"], str):
-        raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
-    path = (base / t["dma"]).resolve()
-    try:
-        data = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2)
-    except (OSError, ValueError) as err:
-        raise InputError(f"[material] dma: cannot read {str(path)!r}: {err}") from None
-    if data.shape[1] < 3:
-        raise InputError(f"[material] dma: {str(path)!r} needs 3 columns (frequency, storage, loss)")
-    unit = t.get("dma_frequency_unit", "rad/s")
-    if unit not in ("rad/s", "Hz"):
-        raise InputError(f"[material] dma_frequency_unit must be 'rad/s' or 'Hz', got {unit!r}")
-    return Material.fit_prony(data[:, 0], data[:, 1], data[:, 2], hz=unit == "Hz",
-                              terms_per_decade=t.get("dma_terms_per_decade", 2.0), nu=nu)
+    return temperatures.dma_material(t, base, nu)  # 3 columns: a Prony fit; 4: a master curve
 
 
 def _surface(t, base):
@@ -174,6 +178,10 @@ def _surface(t, base):
     kind = t.get("kind")
     if kind not in SURFACE_KINDS:
         raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)}, got {kind!r}")
+    if kind == "measured":  # a measured topography file: viscobem_cli.measured_scene
+        from . import measured_scene
+
+        return (measured_scene.surface(t, base),)
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
@@ -279,6 +287,10 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     _check_keys(solver, "solver")
     run = scene_values.solver(solver)
     run["periodic"] = solver.get("periodic", raw["surface"].get("kind") not in INDENTER_KINDS)
+    if raw["surface"].get("kind") == "measured":  # the boundary chosen for the measured patch
+        from . import measured_scene
+
+        run["periodic"] = measured_scene.periodic(raw["surface"], solver)
     if not isinstance(run["periodic"], bool):
         raise InputError(f"[solver] periodic must be true or false, got {run['periodic']!r}")
     run["method"] = solver.get("method", "auto")
@@ -299,12 +311,16 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     plot_xi = analysis.get("plot_xi")
     if plot_xi is not None and not (isinstance(plot_xi, (int, float)) and plot_xi > 0):
         raise InputError(f"[analysis] plot_xi must be a number > 0, got {plot_xi!r}")
+    from .directions import parse as parse_directions
+
+    run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
                  load=loads[0], speeds=speeds, xi=xi, xi_time=tau, outputs=outputs, source=source,
                  raw=raw, realisations=realisations, loads=loads, contact_level=float(level),
                  psd_smoothing=float(smoothing), plot_xi=None if plot_xi is None else float(plot_xi),
                  xi_length=float(xi_length), xi_time_source=tau_source, warnings=tuple(warnings),
-                 fields_precision=precision, **run)
+                 fields_precision=precision, **run, **temperatures.scene_fields(raw, material),
+                 dma=temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None)
 
 
 def load(path=None, *, overrides=()):
