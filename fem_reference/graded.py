@@ -68,7 +68,7 @@ def initial_edges(material, radius, load, speed):
     return -a, a
 
 
-def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=1e-3):
+def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=0.1):
     """A :class:`~fem_reference.mesh.HalfSpaceMesh` graded toward the contact ``edges``.
 
     Parameters
@@ -96,7 +96,7 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
     ell = speed * material.relaxation_times
     ell = ell[ell > 0]
     h_lead = h_edge if ell.size == 0 else float(np.clip(ell.min() / 2, layer_floor * h_edge, h_edge))
-    caps = [(trail, lead, 2.0 * h_edge)]
+    caps = [(trail, lead, h_edge)]
     x = graded_coordinates(-length, length, [trail, lead], [h_edge, h_lead], ratio=ratio, caps=caps)
     y = graded_coordinates(-length, 0.0, [0.0], [h_edge], ratio=ratio)
     mesh = half_space_boundaries(x, y)

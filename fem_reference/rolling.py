@@ -124,7 +124,7 @@ def _check_inputs(material, radius, load, speed, resolution, contact_band, maxit
 
 def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_band=1.5,
                      domain=None, grading=1.5, fold=1e-4, solver="auto", maxiter=100,
-                     keep_fields=False, vtk=None, mesh="uniform", condense="auto", layer_floor=1e-3,
+                     keep_fields=False, vtk=None, mesh="uniform", condense="auto", layer_floor=0.1,
                      passes=8):
     """Steady rolling of a rigid cylinder on a viscoelastic half-space (plane strain FEM).
 

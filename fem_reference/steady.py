@@ -17,8 +17,13 @@ satisfy::
 
 ``K_dev = B^T W D_dev B``, ``G = B^T W m N``, ``M = N^T W N``, ``c = 3 (1 - 2 nu)``,
 ``L_k alpha = R_k eps`` the exponential streamline update of
-:mod:`fem_reference.transport`. The system is sparse and not symmetric; the internal
-variables are kept as unknowns because eliminating them fills each streamline.
+:mod:`fem_reference.transport`. The system is sparse and not symmetric. A term may
+instead be condensed: ``alpha_k = A_k eps`` with the truncated explicit memory ``A_k`` of
+:mod:`fem_reference.condense`, so that ``B`` becomes ``B_v = (I - sum_k g_k A_k) B`` in the
+first two block rows and the term has no unknowns. That trades unknowns for a band along
+the streamlines of width ``~ 30 V tau_k``: cheap where the elements are long compared
+with ``V tau_k``, and the only affordable form on strongly graded meshes, where the
+monolithic system fills under SuperLU.
 
 Boundary conditions: bottom fixed, sides on rollers (``u_x = 0``), top free except for
 the contact forces.
