@@ -148,10 +148,9 @@ def folder_name(T):
     return f"T_{T:.2f}K"
 
 
-def run(scene, out_dir, *, progress=True, scheduler=None, workers=None):
-    """The speed sweep at every temperature of ``scene``; the combined record (also written)."""
-    from .study import run_scene
-
+def run(scene, out_dir, run_scene, *, progress=True, scheduler=None, workers=None):
+    """The speed sweep at every temperature of ``scene`` (each by ``run_scene``, the study
+    runner); the combined record (also written)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     started = time.perf_counter()
