@@ -1,8 +1,11 @@
 """Anisotropy measures of fields on a periodic cell (SPEC §2.5; the seed's section 3).
 
 Conventions: fields are 2-D arrays ``f[ix, iy]`` on a square periodic cell of side
-``length`` (m), axis 0 = x = the sliding direction; Fourier coefficients as in
-:mod:`bem.fft`. Angles ``theta`` are measured from ``+x`` toward ``+y`` (radians).
+``length`` (m), axis 0 = x; Fourier coefficients as in :mod:`bem.fft`. Every measure is
+reported in the frame of the sliding direction ``direction`` (radians from ``+x`` toward
+``+y``, default 0, as in :func:`bem.solve`): its first axis ``s`` is the sliding direction,
+its second ``t`` is ``s`` turned by ``+pi/2``, and angles ``theta`` are measured from the
+sliding direction toward ``t``. With ``direction = 0`` these are x, y and angles from ``+x``.
 
 Spectral moments. ``m20 = <(df/dx)**2>``, ``m02 = <(df/dy)**2>``, ``m11 = <df/dx df/dy>``
 with spectral derivatives (``i q`` multipliers; the Nyquist row and column, whose ``i q``
@@ -21,6 +24,7 @@ smoothed limit ``q -> 0`` (the ``q = 0`` mode itself is excluded from the averag
 marks the size and shape of the contact spots: spots elongated along y give a contour
 stretched along ``q_x``.
 """
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,9 +34,18 @@ from scipy import ndimage
 from . import fft
 from .checks import check_array, check_int, check_positive, check_range
 from .errors import InputError
+from .parallel import get_threads
 
-__all__ = ["SpectralMoments", "spectral_moments", "moments_from_tensor", "ContactPSD", "contact_psd", "Ellipse",
-           "psd_contour", "relative_moments"]
+__all__ = [
+    "ContactPSD",
+    "Ellipse",
+    "SpectralMoments",
+    "contact_psd",
+    "moments_from_tensor",
+    "psd_contour",
+    "relative_moments",
+    "spectral_moments",
+]
 
 SEED_LEVEL = 0.476
 
@@ -44,11 +57,14 @@ class SpectralMoments:
     Attributes
     ----------
     m20, m02, m11 : float
-        ``<fx**2>``, ``<fy**2>``, ``<fx fy>`` (spectral derivatives).
+        ``<fs**2>``, ``<ft**2>``, ``<fs ft>`` (spectral derivatives along the sliding direction
+        ``s`` and across it, ``t``; x and y for ``direction = 0``).
     gamma : float
         ``min m2 / max m2`` in ``[0, 1]`` (1 for an isotropic field).
     theta_max : float
-        Direction of the maximum of ``m2`` (radians, in ``[0, pi)``).
+        Direction of the maximum of ``m2`` (radians from the sliding direction, in ``[0, pi)``).
+    direction : float
+        The sliding direction (radians from ``+x``) the moments are measured from.
     """
 
     m20: float
@@ -56,9 +72,10 @@ class SpectralMoments:
     m11: float
     gamma: float
     theta_max: float
+    direction: float = 0.0
 
     def m2(self, theta):
-        """Mean square slope along ``theta`` (radians, array_like)."""
+        """Mean square slope along ``theta`` (radians from the sliding direction, array_like)."""
         t = np.asarray(theta, dtype=float)
         c, s = np.cos(t), np.sin(t)
         return self.m20 * c**2 + 2 * self.m11 * s * c + self.m02 * s**2
@@ -73,7 +90,15 @@ class SpectralMoments:
 
     def as_dict(self):
         return {"m20": self.m20, "m02": self.m02, "m11": self.m11, "gamma": self.gamma,
-                "theta_max": self.theta_max}
+                "theta_max": self.theta_max, "direction": self.direction}
+
+
+def _in_sliding_frame(m20, m02, m11, direction):
+    """The moment tensor in the frame ``(s, t)`` of the sliding direction (radians from +x)."""
+    c, s = np.cos(direction), np.sin(direction)
+    return (m20 * c * c + 2 * m11 * c * s + m02 * s * s,
+            m20 * s * s - 2 * m11 * c * s + m02 * c * c,
+            (m02 - m20) * c * s + m11 * (c * c - s * s))
 
 
 def moments_from_tensor(m20, m02, m11):
@@ -94,7 +119,7 @@ def _check_field(name, field, length):
     return f, check_positive("length", length)
 
 
-def spectral_moments(field, length):
+def spectral_moments(field, length, *, direction=0.0):
     """Second spectral moments ``m20, m02, m11``, ``gamma`` and ``theta_max`` of a 2-D field.
 
     Parameters
@@ -103,6 +128,8 @@ def spectral_moments(field, length):
         Square 2-D field ``f[ix, iy]`` (e.g. the deformed surface, m), periodic.
     length : float
         Cell side (m).
+    direction : float
+        Sliding direction (radians from ``+x``): the moments and angles are measured from it.
 
     Returns
     -------
@@ -124,7 +151,19 @@ def spectral_moments(field, length):
     qx = np.where(np.arange(n)[:, None] == n // 2, 0.0, qx) if n % 2 == 0 else qx
     qy = np.where(np.arange(qy.shape[1])[None, :] == n // 2, 0.0, qy) if n % 2 == 0 else qy
     w = fft.full_spectrum_weights(f.shape) * np.abs(fq) ** 2
-    return moments_from_tensor(np.sum(w * qx**2), np.sum(w * qy**2), np.sum(w * qx * qy))
+    direction = _check_direction(direction)
+    tensor = _in_sliding_frame(np.sum(w * qx**2), np.sum(w * qy**2), np.sum(w * qx * qy), direction)
+    return dataclasses.replace(moments_from_tensor(*tensor), direction=direction)
+
+
+def _check_direction(direction):
+    try:
+        theta = float(direction)
+    except (TypeError, ValueError):
+        raise InputError(f"direction must be an angle in radians, got {direction!r}") from None
+    if not np.isfinite(theta):
+        raise InputError(f"direction must be a finite angle in radians, got {direction!r}")
+    return theta
 
 
 def relative_moments(moments, reference):
@@ -134,8 +173,12 @@ def relative_moments(moments, reference):
     ``M0**-1/2 M M0**-1/2``, so a field whose slopes grew equally in every direction with
     respect to the reference has ``gamma = 1``; ``theta_max`` is the direction (in the
     original coordinates) along which ``m2`` grew most relative to the reference. Used to
-    separate speed-induced anisotropy from a realisation's own (SPEC §2.5).
+    separate speed-induced anisotropy from a realisation's own. Both must be measured from
+    the same sliding direction; the result is too.
     """
+    if moments.direction != reference.direction:
+        raise InputError(f"reference must be measured from the same sliding direction as moments "
+                         f"({moments.direction!r} rad), got {reference.direction!r} rad")
     m0 = np.array([[reference.m20, reference.m11], [reference.m11, reference.m02]])
     m = np.array([[moments.m20, moments.m11], [moments.m11, moments.m02]])
     vals, vecs = np.linalg.eigh(m0)
@@ -147,7 +190,8 @@ def relative_moments(moments, reference):
     # direction in the original frame: ratio m2(theta) / m2_0(theta) is largest along it
     theta = np.linspace(0, np.pi, 721)[:-1]
     ratio = moments.m2(theta) / reference.m2(theta)
-    return SpectralMoments(rel.m20, rel.m02, rel.m11, rel.gamma, float(theta[np.argmax(ratio)]))
+    return SpectralMoments(rel.m20, rel.m02, rel.m11, rel.gamma, float(theta[np.argmax(ratio)]),
+                           moments.direction)
 
 
 @dataclass(frozen=True, eq=False)
@@ -186,7 +230,7 @@ class ContactPSD:
 def periodogram_full(chi, length):
     """Full centred periodogram of the fluctuation of one indicator map (m**4)."""
     c = np.asarray(chi, dtype=float)
-    cq = sfft.fftn(c - c.mean(), norm="forward")
+    cq = sfft.fftn(c - c.mean(), norm="forward", workers=get_threads())
     return sfft.fftshift(np.abs(cq) ** 2) * (length / (2 * np.pi)) ** 2
 
 
@@ -231,12 +275,14 @@ def contact_psd(chi, length, *, smoothing=1.0):
 class Ellipse:
     """Ellipse fitted to an iso-contour of a centred spectrum.
 
-    ``A qx**2 + 2 B qx qy + D qy**2 = 1``; ``semi_axes = (major, minor)`` (rad/m);
+    In the frame of the sliding direction ``direction`` (radians from ``+q_x``):
+    ``A qs**2 + 2 B qs qt + D qt**2 = 1`` with ``qs`` along the sliding direction and ``qt``
+    across it (``qx, qy`` for ``direction = 0``); ``semi_axes = (major, minor)`` (rad/m);
     ``aspect_ratio = major / minor >= 1``; ``orientation`` = direction of the major axis
-    (radians from ``+q_x``, in ``[0, pi)``); ``stretch_x`` = extent along ``q_x`` over
-    extent along ``q_y`` (> 1: stretched along the sliding direction). ``points`` are the
-    contour points ``(qx, qy)`` (rad/m) found along rays; ``residual`` the rms relative
-    misfit of the fit.
+    (radians from the sliding direction, in ``[0, pi)``); ``stretch_x`` = extent along the
+    sliding direction over extent across it (> 1: stretched along the sliding direction).
+    ``points`` are the contour points ``(qs, qt)`` (rad/m) found along rays; ``residual``
+    the rms relative misfit of the fit.
     """
 
     A: float
@@ -245,6 +291,7 @@ class Ellipse:
     points: np.ndarray
     level: float
     residual: float
+    direction: float = 0.0
 
     @property
     def _eig(self):
@@ -273,17 +320,17 @@ class Ellipse:
         major, minor = self.semi_axes
         return {"level": self.level, "semi_major": major, "semi_minor": minor,
                 "aspect_ratio": self.aspect_ratio, "orientation": self.orientation,
-                "stretch_x": self.stretch_x, "fit_residual": self.residual}
+                "stretch_x": self.stretch_x, "fit_residual": self.residual, "direction": self.direction}
 
 
-def psd_contour(cpsd, level=SEED_LEVEL, *, rays=180, step=0.02):
+def psd_contour(cpsd, level=SEED_LEVEL, *, rays=180, step=0.02, direction=0.0):
     """Iso-contour ``C_chi(q) / C_chi(0) = level`` and the centred ellipse fitted to it.
 
     Along each of ``rays`` directions the normalised map is interpolated (cubic splines
     between grid modes) outward from ``q = 0`` in steps of ``step`` grid modes; the first
     crossing below ``level`` is located by linear interpolation between steps. A centred
     ellipse is fitted to the points by linear least squares (the PSD of a real field is
-    even in ``q``).
+    even in ``q``), in the frame of the sliding direction ``direction`` (radians from ``+q_x``).
 
     Returns
     -------
@@ -315,6 +362,9 @@ def psd_contour(cpsd, level=SEED_LEVEL, *, rays=180, step=0.02):
         raise InputError(f"level {level!r}: the contour C/C0 = level was found along only {len(pts)} of "
                          f"{rays} rays; choose a level between the map's values")
     p = np.array(pts) * dq
+    theta = _check_direction(direction)
+    c, sn = np.cos(theta), np.sin(theta)
+    p = np.column_stack([p[:, 0] * c + p[:, 1] * sn, -p[:, 0] * sn + p[:, 1] * c])  # (qs, qt)
     p = np.vstack([p, -p])
     design = np.column_stack([p[:, 0] ** 2, 2 * p[:, 0] * p[:, 1], p[:, 1] ** 2])
     coef, *_ = np.linalg.lstsq(design, np.ones(len(p)), rcond=None)
@@ -322,4 +372,4 @@ def psd_contour(cpsd, level=SEED_LEVEL, *, rays=180, step=0.02):
     if not (coef[0] > 0 and coef[2] > 0 and coef[0] * coef[2] > coef[1] ** 2):
         raise InputError(f"level {level!r}: the contour is not an ellipse (fit is indefinite)")
     return Ellipse(A=float(coef[0]), B=float(coef[1]), D=float(coef[2]), points=p, level=level,
-                   residual=resid)
+                   residual=resid, direction=theta)

@@ -21,10 +21,10 @@ the pressure vanishes).
 """
 import logging
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
+from . import direction as sliding_direction
 from . import fft
 from .checks import check_array, check_int, check_keywords, check_positive, show
 from .contact import ContactOptions, solve_contact
@@ -101,7 +101,7 @@ _ISOLATED_METHODS = ("auto", "uniform", "adaptive")
 # keywords of bem.adaptive.solve_adaptive that solve() passes on with method="adaptive"
 ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling", "height", "max_elements")
 _SOLVE_KEYWORDS = ("speed", "load", "approach", "periodic", "method", "rtol", "maxiter", "initial",
-                   "raise_on_failure", "contact_options")
+                   "raise_on_failure", "contact_options", "direction")
 _PERIODIC_METHODS = ("auto", "active-set")
 
 
@@ -129,7 +129,7 @@ def _choose_isolated_method(surface, material, *, speed, load, rtol):
 
 def solve(surface, material, *, speed, load=None, approach=None, periodic=True, method="auto",
           rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, contact_options=None,
-          **adaptive_options):
+          direction=0.0, **adaptive_options):
     """Steady sliding of a rigid surface over a viscoelastic half-space.
 
     Parameters
@@ -164,6 +164,10 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
         (default). With ``False`` the result comes back with ``success=False``.
     contact_options : bem.contact.ContactOptions, optional
         Tunables of the contact solver (uniform grids); default ``ContactOptions()``.
+    direction : float
+        Sliding direction (radians from ``+x`` toward ``+y``; default 0), see
+        :mod:`bem.direction`: ``speed`` is along it, ``friction`` opposes it, fields stay on the
+        surface's grid. 1-D profiles: 0 or pi only.
 
     Returns
     -------
@@ -192,6 +196,13 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     """
     check_keywords("solve", adaptive_options, ADAPTIVE_OPTIONS + _SOLVE_KEYWORDS)
     surface, speed, load, approach, rtol = check_inputs(surface, material, speed, load, approach, rtol)
+    # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
+    theta, turns = sliding_direction.plan(direction, surface.ndim, periodic, method)
+    if turns:
+        return sliding_direction.solve_turned(
+            solve, surface, material, turns, speed=speed, load=load, approach=approach, periodic=periodic,
+            method=method, rtol=rtol, maxiter=maxiter, initial=initial, raise_on_failure=raise_on_failure,
+            contact_options=contact_options, **adaptive_options)
     if not isinstance(periodic, (bool, np.bool_)):
         raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {show(periodic)}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
@@ -223,7 +234,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
             raise InputError(f"approach must be in (0, {show(limit)}) m: at max(h) - mean(h) the cell is in full "
                              f"contact and the load is unbounded (zero-mean displacement), got {show(approach)}")
     t0 = time.perf_counter()
-    op = operator_for(surface, material, speed, periodic)
+    op = sliding_direction.operator(operator_for, surface, material, speed, periodic, theta)
     area = op.area
     sol = solve_contact(op, surface.heights, mean_pressure=None if load is None else load / area,
                         approach=approach, rtol=rtol, maxiter=maxiter, initial=initial,
@@ -232,6 +243,7 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     total = float(p.mean() * area)
     if total > 0:
         friction, friction_eq6 = (_friction_periodic if periodic else _friction_isolated)(op, surface, p, total)
+        friction_eq6 = sliding_direction.eq6(op, surface.heights, p, total, friction_eq6)
     else:
         friction = friction_eq6 = 0.0
     result = SlidingResult(

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import sliding
-from .checks import check_positive
+from .checks import check_positive, show
 from .errors import ConvergenceError, InputError
 
 __all__ = ["FrictionCurve", "friction_curve", "sweep", "check_sweep"]
@@ -56,7 +56,7 @@ class FrictionCurve:
 
 
 def sweep(surfaces, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True, periodic=True,
-          method="auto", skip=None, on_point=None, keep=True):
+          method="auto", skip=None, on_point=None, keep=True, direction=0.0):
     """Solve every surface at every speed, in increasing speed, warm-starting each surface.
 
     Parameters
@@ -94,7 +94,8 @@ def sweep(surfaces, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_star
             start = previous[r] if warm_start and method != "adaptive" else None
             try:
                 res = sliding.solve(surface, material, speed=float(speeds[i]), load=load, rtol=rtol,
-                                    maxiter=maxiter, initial=start, periodic=periodic, method=method)
+                                    maxiter=maxiter, initial=start, periodic=periodic, method=method,
+                                    direction=direction)
             except ConvergenceError as err:
                 res, message = None, str(err)
                 log.warning("%s", err)
@@ -120,13 +121,14 @@ def check_sweep(surface, material, *, speeds, loads, rtol):
 def _loads(load):
     if isinstance(load, (list, tuple, np.ndarray)):
         if len(load) == 0:
-            raise InputError("load must be a number > 0 or a non-empty list of them (N; N/m for profiles), got []")
+            raise InputError(f"load must be a number > 0 or a non-empty list of them (N; N/m for profiles), "
+                             f"got {show(load)}")
         return [check_positive("load", x) for x in load], True
     return [load], False
 
 
 def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
-                   progress=False, callback=None, periodic=True, method="auto"):
+                   progress=False, callback=None, periodic=True, method="auto", direction=0.0):
     """Friction against speed: solve at each speed, warm-starting from the neighbour.
 
     Parameters
@@ -141,20 +143,24 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
         ``callback(index, speed, result_or_None, message)`` after each point (with a list of
         loads, ``index`` counts the points of all loads: ``load_index * len(speeds) + i``);
         a point that fails to converge is reported with ``None`` and the sweep goes on.
-    periodic, method, rtol, maxiter
-        As in :func:`bem.solve` (``periodic=False``: isolated contact). The warm start is
-        skipped for ``method="adaptive"``.
+    periodic, method, rtol, maxiter, direction
+        As in :func:`bem.solve` (``periodic=False``: isolated contact; ``direction``: sliding
+        direction, radians from +x). The warm start is skipped for ``method="adaptive"``.
 
     Returns
     -------
     FrictionCurve, or a list of them (one per load) when ``load`` is a list.
     """
+    given = speeds
     try:
-        speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+        speeds = np.atleast_1d(np.asarray(speeds))
     except (TypeError, ValueError):
-        raise InputError(f"speeds must be a list of numbers (m/s), got {speeds!r}") from None
+        speeds = np.array([given], dtype=object)
+    if speeds.dtype.kind not in "iuf":  # strings, booleans, objects: not speeds
+        raise InputError(f"speeds must be a list of numbers (m/s), got {show(given)}")
+    speeds = speeds.astype(float)
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {speeds!r}")
+        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {show(speeds.tolist())}")
     loads, several = _loads(load)
     checked = [sliding.check_inputs(surface, material, 0.0, x, None, rtol) for x in loads]
     surface, rtol = checked[0][0], checked[0][4]
@@ -170,7 +176,7 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
 
             results, messages = sweep([surface], material, speeds=speeds, load=f_n, rtol=rtol, maxiter=maxiter,
                                       warm_start=warm_start, periodic=periodic, method=method,
-                                      on_point=on_point)
+                                      on_point=on_point, direction=direction)
             curves.append(_curve(speeds, results[0], messages[0], f_n))
     return curves if several else curves[0]
 

@@ -108,7 +108,7 @@ def contact_psd_summary(scene, recs, points_dir):
                 try:
                     cpsd = anisotropy.contact_psd(np.stack(chis), scene.surface.length,
                                                   smoothing=scene.psd_smoothing)
-                    ell = anisotropy.psd_contour(cpsd, scene.contact_level)
+                    ell = anisotropy.psd_contour(cpsd, scene.contact_level, direction=scene.direction)
                     maps[(l, i)] = (cpsd, ell)
                 except InputError as err:
                     msg = str(err)

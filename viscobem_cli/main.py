@@ -97,7 +97,7 @@ def _cmd_bench(args):
     if args.name == "import":
         from . import import_bench
 
-        import_bench.run(out_dir=args.out, repeats=2 if args.quick else 7)
+        import_bench.run(out_dir=args.out, repeats=1 if args.quick else 7)
         return 0
     if args.name != "all":
         module = importlib.import_module(f"viscobem_bench.{args.name}")
@@ -158,7 +158,8 @@ def _cmd_validate(args):
             print(f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
                   f"(allowed +-{r['allowed']:.3g})")
         if comparison["missing"]:
-            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {comparison['missing'][0]['key']}); "
+            first = comparison["missing"][0]["key"]
+            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
                   f"regenerate with: viscobem validate --quick --update-baselines --out DIR")
         print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
         status = status or (0 if comparison["ok"] else 1)

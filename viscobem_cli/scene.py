@@ -20,9 +20,13 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
                  file:        path (.npy/.txt/.csv, relative to the scene file), unit
                  sphere, cylinder: radius (m), exact (default false: paraboloid); an isolated
                               indenter centred in a domain of side length (2-D map / 1-D profile)
+                 measured:    path (any instrument format), n, detrend, boundary, window, alpha,
+                              unit, scan_size, channel (viscobem_cli.measured_scene)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
-                 material's longest creep time); temperatures = [...] (K; needs a shift law)
+                 material's longest creep time); temperatures = [...] (K; needs a shift law);
+                 direction_deg (sliding direction from +x toward +y, degrees; a list sweeps it:
+                 viscobem_cli.directions)
     [solver]     rtol, maxiter, warm_start, workers (processes, default 1), chunk (speeds per
                  task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol,
                  periodic (default false for sphere and cylinder, true otherwise),
@@ -60,15 +64,16 @@ SCHEMA = {
                  "dma_modulus_unit", "dma_temperature_unit", "shift"},
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
                 "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
-                "realisations", "radius", "exact"},
-    "loading": {"load", "speeds", "xi", "xi_time", "temperatures"},
+                "realisations", "radius", "exact",
+                "detrend", "boundary", "window", "alpha", "scan_size", "channel"},  # kind = "measured"
+    "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
     "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
                "method"},
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson",
                 "fields_precision"},
     "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
-SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder")
+SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder", "measured")
 INDENTER_KINDS = ("sphere", "cylinder")  # isolated indenters: periodic = false by default
 DEFAULT_SCENE = scene_path(None)
 MIN_POINTS_PER_WAVELENGTH = 4  # fewer: the two friction forms drift apart (a warning)
@@ -109,11 +114,17 @@ class Scene:
     shift: object = None  # time-temperature shift law (bem.temperature), or None
     temperatures: tuple = ()  # K; a sweep per temperature when given
     dma: dict = field(default=None, repr=False)  # the DMA table in SI (viscobem_cli.temperatures.read_dma)
+    directions: tuple = (0.0,)  # sliding directions (radians), see viscobem_cli.directions
 
     @property
     def kind(self):
         """The surface kind ("self_affine", "sphere", ...)."""
         return self.raw.get("surface", {}).get("kind", "")
+
+    @property
+    def direction(self):
+        """The sliding direction of a single-direction study (radians)."""
+        return self.directions[0]
 
     def __post_init__(self):
         if not self.realisations:
@@ -167,6 +178,10 @@ def _surface(t, base):
     kind = t.get("kind")
     if kind not in SURFACE_KINDS:
         raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)}, got {kind!r}")
+    if kind == "measured":  # a measured topography file: viscobem_cli.measured_scene
+        from . import measured_scene
+
+        return (measured_scene.surface(t, base),)
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
@@ -272,6 +287,10 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     _check_keys(solver, "solver")
     run = scene_values.solver(solver)
     run["periodic"] = solver.get("periodic", raw["surface"].get("kind") not in INDENTER_KINDS)
+    if raw["surface"].get("kind") == "measured":  # the boundary chosen for the measured patch
+        from . import measured_scene
+
+        run["periodic"] = measured_scene.periodic(raw["surface"], solver)
     if not isinstance(run["periodic"], bool):
         raise InputError(f"[solver] periodic must be true or false, got {run['periodic']!r}")
     run["method"] = solver.get("method", "auto")
@@ -292,6 +311,9 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     plot_xi = analysis.get("plot_xi")
     if plot_xi is not None and not (isinstance(plot_xi, (int, float)) and plot_xi > 0):
         raise InputError(f"[analysis] plot_xi must be a number > 0, got {plot_xi!r}")
+    from .directions import parse as parse_directions
+
+    run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
     return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
                  load=loads[0], speeds=speeds, xi=xi, xi_time=tau, outputs=outputs, source=source,
                  raw=raw, realisations=realisations, loads=loads, contact_level=float(level),

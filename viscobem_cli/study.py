@@ -35,8 +35,16 @@ import numpy as np
 from bem.sweep import check_sweep
 
 from . import analysis, guidance, records, temperatures
-from .sweep import (STUDY_FIELDS, execute, load_fields, load_point, point_key, point_name, remove_stale_temporaries,
-                    write_atomic)
+from .sweep import (
+    STUDY_FIELDS,
+    execute,
+    load_fields,
+    load_point,
+    point_key,
+    point_name,
+    remove_stale_temporaries,
+    write_atomic,
+)
 
 __all__ = ["run_scene", "write_atomic", "fold_material"]
 
@@ -53,6 +61,8 @@ def fold_material(scene):
     # an isolated domain has no lowest frequency, so there only relaxed terms are folded.
     w_min = 2 * np.pi / s.length * moving.min() if scene.periodic and s.ndim == 1 else 0.0
     w_max = np.pi * s.n / s.length * moving.max()
+    # oblique sliding: |q.d| reaches (|cos| + |sin|) times the Nyquist wavenumber
+    w_max *= max(abs(math.cos(t)) + abs(math.sin(t)) for t in scene.directions)
     return m.folded(w_min, w_max, tol=scene.fold_tol)
 
 
@@ -86,6 +96,7 @@ def _base_record(scene, material, workers, scheduler):
                    "workers": workers, "scheduler": scheduler},
         "outputs": {**scene.outputs, "fields_precision": scene.fields_precision},
         "warnings": list(scene.warnings), "stages": {}, "stages_run": [], "complete": False,
+        "direction_deg": round(math.degrees(scene.direction), 9),
     }
 
 
@@ -212,6 +223,10 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     A folder holding finished points of the same study is resumed: those points are not
     solved again.
     """
+    if len(scene.directions) > 1:  # a sweep over sliding directions: one study per direction
+        from .directions import run_sweep
+
+        return run_sweep(run_scene, scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     check_sweep(scene.surface, scene.material, speeds=scene.speeds, loads=scene.loads, rtol=scene.rtol)
     if scene.temperatures:  # one sweep per temperature (viscobem_cli.temperatures)
         return temperatures.run(scene, out_dir, run_scene, progress=progress, scheduler=scheduler, workers=workers)
@@ -232,6 +247,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
             "precision": scene.fields_precision}
     settings = {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
                 "anisotropy": outputs["anisotropy"], **keep}
+    if scene.direction != 0.0:  # sliding direction
+        settings["direction"] = scene.direction
     recs, todo = _finished_points(scene, material, settings, points_dir)
     record["resumed_points"] = len(recs)
     _write_record(out, scene, record, recs)
@@ -251,7 +268,12 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     _write_record(out, scene, record, recs)  # the curves, for the plots
     advice = "Raise [surface] n until they agree." if scene.kind in ("sphere", "cylinder") else None
     record["warnings"] += guidance.friction_form_warnings(record["curves"], **({"advice": advice} if advice else {}))
+    record["warnings"] += guidance.peak_warnings(record["curves"], scene.xi_time_source)
     record["files"] = _outputs(scene, record, recs, points_dir, out, extras, stages)
+    if scene.surface.metadata.get("kind") == "measured":  # boundary choice and PSD of the measurement
+        from .measured_scene import report
+
+        record["files"] += report(scene, record, out)
     expected = len(scene.realisations) * len(scene.loads) * scene.speeds.size
     record["all_converged"] = bool(all(p["success"] for p in recs.values()) and len(recs) == expected)
     record["complete"] = True
@@ -282,7 +304,7 @@ def _tasks(scene, material, todo, points_dir, workers, scheduler, keep):
                           "warm_start": scene.warm_start, "anisotropy": scene.outputs["anisotropy"],
                           "keep_fields": keep["fields"], "keep_chi": keep["chi"], "precision": keep["precision"],
                           "indenter": indenter, "out": str(points_dir),
-                          "single_thread": scheduler is None and workers > 1})
+                          "single_thread": scheduler is None and workers > 1, "direction": scene.direction})
     return tasks
 
 

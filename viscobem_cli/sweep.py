@@ -115,7 +115,8 @@ def point_record(task, r, i, res, message):
         rec.update(indenter_contact(task["indenter"], res.pressure, task["surfaces"][r].spacing))
     if task["anisotropy"] and res.pressure.ndim == 2:
         t0 = time.perf_counter()
-        rec["moments"] = anisotropy.spectral_moments(res.displacement, task["surfaces"][r].length).as_dict()
+        rec["moments"] = anisotropy.spectral_moments(res.displacement, task["surfaces"][r].length,
+                                                     direction=task.get("direction", 0.0)).as_dict()
         rec["times"]["anisotropy"] = time.perf_counter() - t0
     return rec
 
@@ -168,7 +169,8 @@ def run_chunk(task, callback=None):
     sweep(task["surfaces"], task["material"], speeds=np.asarray(task["speeds"])[indices], load=task["load"],
           rtol=task["rtol"], maxiter=task["maxiter"], warm_start=task["warm_start"],
           periodic=task.get("periodic", True), method=task.get("method", "auto"),
-          skip=lambda j, r: (r, indices[j]) not in task["keys"], on_point=on_point, keep=False)
+          skip=lambda j, r: (r, indices[j]) not in task["keys"], on_point=on_point, keep=False,
+          direction=task.get("direction", 0.0))
     return records
 
 
