@@ -25,6 +25,7 @@ _LAZY = {
     "errors": ("bem.errors", None),
     "anisotropy": ("bem.anisotropy", None),
     "persson": ("bem.persson", None),
+    "temperature": ("bem.temperature", None),
     "set_threads": ("bem.parallel", "set_threads"),
     "get_threads": ("bem.parallel", "get_threads"),
     "use_threads": ("bem.parallel", "use_threads"),

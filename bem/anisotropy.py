@@ -34,6 +34,7 @@ from scipy import ndimage
 from . import fft
 from .checks import check_array, check_int, check_positive, check_range
 from .errors import InputError
+from .parallel import get_threads
 
 __all__ = [
     "ContactPSD",
@@ -229,7 +230,7 @@ class ContactPSD:
 def periodogram_full(chi, length):
     """Full centred periodogram of the fluctuation of one indicator map (m**4)."""
     c = np.asarray(chi, dtype=float)
-    cq = sfft.fftn(c - c.mean(), norm="forward")
+    cq = sfft.fftn(c - c.mean(), norm="forward", workers=get_threads())
     return sfft.fftshift(np.abs(cq) ** 2) * (length / (2 * np.pi)) ** 2
 
 

@@ -1,45 +1,43 @@
 """Unilateral frictionless contact of a rigid indenter: the complementarity solver.
 
-Problem. Heights ``h`` (m) are positive toward the half-space, so contact starts at
-``max(h)``. With ``A`` the surface response operator (zero-mean displacement per pressure,
-m/Pa; any linear operator whose symmetric part is positive definite, so the non-symmetric
-steady-sliding operator is included), find the pressure ``p`` (Pa) and the rigid approach
-``delta`` (m) with
+Problem. Heights ``h`` (m) point into the half-space. With ``A`` the surface response
+operator (zero-mean displacement per pressure, m/Pa; its symmetric part positive definite,
+which includes the non-symmetric steady-sliding operator), find the pressure ``p`` (Pa) and
+the rigid approach ``delta`` (m) with ``mean(p) = p_mean`` (load control) or ``delta`` given:
 
-    g = A p - (h - max(h) + delta) >= 0,   p >= 0,   p g = 0,
+    g = A p - (h - max(h) + delta) >= 0,   p >= 0,   p g = 0.
 
-and either ``mean(p) = p_mean`` (load control) or ``delta`` given (displacement control).
+Algorithm. Primal–dual active set, i.e. semismooth Newton on ``min(p, c g) = 0`` with ``c``
+the stiffness of one grid cell [1]: each step solves the linear problem on the contact set
+``C = {p - c g > 0}`` (:mod:`bem.contact_inner`) by CG when ``A`` is symmetric, GMRES
+otherwise [2]; non-symmetric problems are damped by a line search on ``||min(p, c g)||``,
+which costs no product (:mod:`bem.contact_newton`).
 
-Algorithm. A primal–dual active set method, i.e. semismooth Newton on ``min(p, c g) = 0``
-with ``c`` the stiffness of one grid cell [1]; each step solves the linear problem on the
-contact set ``C = {p - c g > 0}`` (:mod:`bem.contact_inner`) by conjugate gradients when
-``A`` is symmetric, GMRES otherwise [2], and is damped, for non-symmetric operators, by a
-line search on ``||min(p, c g)||`` that costs no product (:mod:`bem.contact_newton`).
-
-- Inexact Newton [3]: the inner solves stop at a share ``eta`` of their right-hand side
-  while the set changes, and tightly once it has settled; ``eta`` tightens when a step on a
-  nearly settled set has to be damped, or when its residual stalls.
-- Preconditioners: ``R A^-1 R^T`` (the full-contact inverse restricted to ``C``) on large
-  grids; for strongly non-symmetric 2-D operators the line preconditioner
-  (:mod:`bem.line_preconditioner`), which inverts the creep factor of ``A`` exactly on ``C``.
+- Inexact Newton [3]: inner solves stop at a share ``eta`` of their right-hand side while
+  the set changes, tightly once it has settled; ``eta`` tightens when a step on a nearly
+  settled set is damped, or when the residual stalls.
+- Preconditioners: ``R A^-1 R^T`` (full-contact inverse restricted to ``C``) on large grids;
+  for strongly non-symmetric 2-D operators :mod:`bem.line_preconditioner`.
 - Nested iteration [4]: large grids start from the solution on the grid with half the points
-  per axis; other first iterates in :mod:`bem.contact_start`.
-- Retry policy (:func:`solve_contact`): a fast attempt, then a careful one with inner
-  tolerances that only tighten; strongly non-symmetric 2-D operators first try the line
-  preconditioner and fall back to the careful attempt without it.
+  per axis; the other first iterates are in :mod:`bem.contact_start`.
+- Retry (:func:`solve_contact`): a fast attempt, then one whose inner tolerances only
+  tighten; strongly non-symmetric 2-D operators first try the line preconditioner.
 
 Every tunable is a field of :class:`ContactOptions`, with what it trades and why.
 
-Convergence test, stated exactly: the solve succeeds when the complementarity residual
-``r = max_i |min(p_i / p_ref, g_i / h_ref)|`` is ``<= rtol``, with ``p_ref`` the mean
-pressure and ``h_ref`` the peak-to-valley height (or the displacement ``A p_ref`` at one point
-for a flat surface). ``r = 0`` iff ``p >= 0``, ``g >= 0`` and ``p g = 0``. Under load control
-the load balance holds to round-off. Otherwise :class:`bem.errors.ConvergenceError` is raised.
+Convergence test, stated exactly: success when ``r = max_i |min(p_i / p_ref, g_i / h_ref)|
+<= rtol`` (``r = 0`` iff the contact conditions hold), with ``p_ref`` the mean pressure and
+``h_ref = gap_scale a0 p_ref``, the displacement of ``gap_scale`` cells under it, held between
+``gap_floor_share`` of the peak-to-valley height and that height. A gap error ``e`` moves the
+pressure by about ``e / a0``, so this scale bounds the pressure error: the relative L2 error
+is at most ``10 rtol`` (``tests/test_rtol_meaning.py``). Inner solves stop a decade lower.
+Under load control the load balance holds to round-off. A solve that fails raises
+:class:`bem.errors.ConvergenceError`.
 
 [1] Hintermüller, Ito & Kunisch, SIAM J. Optim. 13 (2002) 865, doi:10.1137/S1052623401383558.
 [2] Saad & Schultz, SIAM J. Sci. Stat. Comput. 7 (1986) 856, doi:10.1137/0907058.
 [3] Eisenstat & Walker, SIAM J. Sci. Comput. 17 (1996) 16, doi:10.1137/0917003.
-[4] Hackbusch, Multi-Grid Methods and Applications, Springer (1985), ch. 5 (nested iteration).
+[4] Hackbusch, Multi-Grid Methods and Applications, Springer (1985), ch. 5.
 """
 import logging
 import math

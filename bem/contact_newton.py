@@ -80,16 +80,26 @@ def line_search(p, g, p_new, g_new, c, *, full, decrease, halvings):
     return float(ts[k]) if values[k] < m0 else float(ts[-1])
 
 
-def problem_scales(op, heights, mean_pressure, approach, rtol, options):
-    """The scaled :class:`~bem.contact_inner.Problem` (see :mod:`bem.contact` for the scales)."""
+def problem_scales(op, heights, mean_pressure, approach, rtol, options, *, strong, p_mean=None):
+    """The scaled :class:`~bem.contact_inner.Problem`: ``p_ref`` the mean pressure (under
+    displacement control ``p_mean``, that of the first Newton point, once known) and ``h_ref =
+    gap_scale a0 p_ref``, ``gap_scale`` times the displacement of one cell under it
+    (``gap_scale_strong`` for strongly non-symmetric operators, ``strong``), kept between
+    ``gap_floor_share`` of the surface's height range and that range (near full contact of
+    soft solids)."""
     ht = heights - heights.max()
     load_control = mean_pressure is not None
     a0 = op.self_influence()
     if load_control:
         p_ref = float(mean_pressure)
-    else:
+    elif p_mean:
+        p_ref = float(p_mean)
+    else:  # before the first iterate: the pressure that pushes one cell by the approach
         p_ref = max(float(approach), np.ptp(ht) * 1e-3) / a0
-    h_ref = float(np.ptp(ht)) or a0 * p_ref
+    h_ref = (options.gap_scale_strong if strong else options.gap_scale) * a0 * p_ref
+    ptp = float(np.ptp(ht))
+    if ptp > 0:  # between round-off of the heights and their range (see ContactOptions)
+        h_ref = min(max(h_ref, options.gap_floor_share * ptp), ptp)
     return Problem(ht=ht, load_control=load_control, approach=None if load_control else float(approach),
                    p_ref=p_ref, h_ref=h_ref, c=1.0 / a0, final_atol=options.final_atol_share * rtol * h_ref)
 
@@ -110,6 +120,11 @@ class ActiveSet:
         self.residual = complementarity_residual(self.p, self.g, self.pb.p_ref, self.pb.h_ref)
         self.outer = 1
         self.lowest, self.since_lowest = self.residual, 0
+
+    def rescale(self, pb):
+        """Use the scales of ``pb`` from here on."""
+        self.pb = self.inner.problem = pb
+        self.residual = self.lowest = complementarity_residual(self.p, self.g, pb.p_ref, pb.h_ref)
 
     def _go_on(self):
         a = self.attempt
@@ -201,8 +216,8 @@ class ActiveSet:
 def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, options, initial=None,
                   initial_approach=None):
     """One attempt of the active-set iteration (never raises; see :class:`Attempt`)."""
-    pb = problem_scales(op, heights, mean_pressure, approach, rtol, options)
     strongly_nonsymmetric = max_phase(op) > options.strong_phase
+    pb = problem_scales(op, heights, mean_pressure, approach, rtol, options, strong=strongly_nonsymmetric)
     precondition = attempt.precondition
     if precondition is None:
         precondition = options.precondition
@@ -221,4 +236,7 @@ def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, option
         symmetric_start=wants_symmetric_start(op, pb.ht, strongly_nonsymmetric, options), options=options)
     it = ActiveSet(op, pb, inner, attempt, rtol, options)
     it.start(p, contact)
+    if not pb.load_control and it.p.mean() > 0:  # displacement control: now the mean pressure is known
+        it.rescale(problem_scales(op, heights, mean_pressure, approach, rtol, options, strong=strongly_nonsymmetric,
+                                  p_mean=it.p.mean()))
     return it.run()

@@ -16,7 +16,8 @@ __all__ = ["ContactOptions"]
 
 # (low, high, low inclusive) of every numeric field; booleans and ``precondition`` are checked apart
 _RANGES = {
-    "inner_eta": (0.0, 1.0, False), "inner_eta_min": (0.0, 1.0, False), "inner_relax": (1.0, math.inf, True),
+    "inner_eta": (0.0, 1.0, False), "inner_eta_min": (0.0, 1.0, False), "gap_scale": (0.0, math.inf, False),
+    "gap_scale_strong": (0.0, math.inf, False), "gap_floor_share": (0.0, 1.0, True), "inner_relax": (1.0, math.inf, True),
     "inner_tighten": (0.0, 1.0, False), "inner_maxiter_per_sqrt_n": (0.0, math.inf, True),
     "inner_maxiter_base": (0, math.inf, True), "final_atol_share": (0.0, 1.0, False),
     "atol_floor": (0.0, 1.0, False), "stall_ratio": (0.0, 1.0, False),
@@ -41,7 +42,6 @@ class ContactOptions:
     """Tunables of :func:`bem.contact.solve_contact`; validated on creation (``InputError``)."""
 
     # Newton iteration and its inexact inner solves
-
     inner_eta: float = 0.1
     """Inner forcing term while the set changes: loose solves are cheap and the set is wrong anyway."""
     inner_eta_min: float = 1e-4
@@ -54,6 +54,13 @@ class ContactOptions:
     """Inner products cap per sqrt(grid points): Krylov counts grow like sqrt(N) on these operators."""
     inner_maxiter_base: int = 200
     """Inner products cap added to the above: small grids still get a useful solve."""
+    gap_scale: float = 10.0
+    """Residual's gap scale in one cell's displacement under the mean pressure: larger is cheaper; 10 keeps
+    the pressure error under 4 rtol on the tested cases."""
+    gap_scale_strong: float = 0.3
+    """The same for strongly non-symmetric operators, whose pressure error per gap error is larger (3 rtol)."""
+    gap_floor_share: float = 1e-4
+    """Smallest gap scale as a share of the height range: below it round-off of the gap would stop tight solves."""
     final_atol_share: float = 0.1
     """Inner absolute tolerance as a share of ``rtol`` times the gap scale: a decade below the outer test."""
     atol_floor: float = 1e-3
@@ -132,7 +139,7 @@ class ContactOptions:
                 if value is not None and not isinstance(value, bool):
                     raise InputError(f"options.precondition must be None, True or False, got {value!r}")
             elif f.name == "line_dtype":
-                if np.dtype(value) not in (np.dtype(np.float32), np.dtype(np.float64)):
+                if value not in (np.float32, np.float64):
                     raise InputError(f"options.line_dtype must be numpy.float32 or numpy.float64, got {value!r}")
             elif not isinstance(value, bool):
                 raise InputError(f"options.{f.name} must be True or False, got {value!r}")

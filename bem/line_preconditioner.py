@@ -32,13 +32,11 @@ _POOL = None  # ((pid, workers), executor): see _run
 
 
 def _run(func, items):
-    """``func(item)`` for every item, on as many threads as :mod:`bem.fft` uses cores
-    (:func:`bem.parallel.get_threads`; 1 runs them here): numpy releases the GIL in the batched inverses and
-    products, and BLAS itself stays single-threaded."""
+    """``func(item)`` for every item, on :func:`bem.parallel.get_threads` threads (1 runs them
+    here): numpy releases the GIL in the batched inverses and products, and BLAS itself stays
+    single-threaded."""
     global _POOL
     workers = get_threads()
-    if workers is None or workers < 1:
-        workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
     if workers == 1 or len(items) < 2:
         for item in items:
             func(item)

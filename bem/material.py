@@ -27,10 +27,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq, nnls
+from scipy.optimize import brentq
 
+from . import master_curve
 from .checks import check_array, check_positive, check_range
 from .errors import InputError
+from .prony_fit import check_dma, default_times, fit_prony_series
 
 __all__ = ["Material"]
 
@@ -129,6 +131,9 @@ class Material:
         Creep series ``C_k`` (1/Pa) and ``lambda_k`` (s), longest time first.
     nu : float
         Poisson ratio in [0, 0.5].
+    fit_report : FitReport or None
+        For fitted materials, how well the series reproduces the data it was fitted to
+        (see :mod:`bem.prony_fit`); None otherwise.
     """
 
     E0: float
@@ -138,6 +143,7 @@ class Material:
     compliances: np.ndarray = field(init=False, repr=False)
     creep_times: np.ndarray = field(init=False, repr=False)
     E_inf: float = field(init=False)
+    fit_report: object = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
         E0 = check_positive("E0", self.E0)
@@ -181,7 +187,12 @@ class Material:
 
     @classmethod
     def from_prony(cls, *, E0, moduli, times, nu=0.5):
-        """Relaxation series ``E(t) = E0 + sum E_k exp(-t/tau_k)`` (Pa, s)."""
+        """Relaxation series ``E(t) = E0 + sum E_k exp(-t/tau_k)`` (Pa, s).
+
+        The terms are stored sorted by time, longest first, whatever their order here:
+        ``moduli[k]`` stays paired with ``times[k]``, and two materials with the same terms in
+        different orders are equal.
+        """
         return cls(E0, check_array("moduli", moduli, ndim=1), check_array("times", times, ndim=1), nu)
 
     @classmethod
@@ -198,9 +209,9 @@ class Material:
         return cls(E0, Ek, tk, nu)
 
     @classmethod
-    def fit_prony(cls, frequencies, storage, loss, *, times=None, terms_per_decade=2.0,
-                  hz=False, nu=0.5):
-        """Fit a non-negative Prony series to DMA data (a master curve).
+    def fit_prony(cls, frequencies, storage, loss, *, times=None, terms_per_decade=3.0,
+                  hz=False, nu=0.5, smoothing=0.0):
+        """Fit a non-negative Prony series to DMA data (a master curve), in relative error.
 
         Parameters
         ----------
@@ -210,47 +221,103 @@ class Material:
             ``E'(w)`` and ``E''(w)`` in Pa.
         times : array_like, optional
             Relaxation times (s) to fit with; by default log-spaced over
-            ``[1/w_max, 1/w_min]`` with ``terms_per_decade`` per decade.
+            ``[1/w_max, 1/w_min]`` widened by one decade each side, with
+            ``terms_per_decade`` per decade.
         nu : float
             Poisson ratio.
+        smoothing : float
+            Weight (>= 0, dimensionless) of the second-difference penalty on the relative
+            spectrum; 0 fits by least squares alone.
+
+        Returns
+        -------
+        Material
+            With ``fit_report`` (a :class:`bem.prony_fit.FitReport`): the max and rms
+            relative errors of ``E'`` and ``E''`` against the data.
 
         Notes
         -----
-        Non-negative least squares (Lawson–Hanson) on ``E'`` and ``E''`` each divided by
-        ``|E*|`` at its frequency, so every decade weighs the same. Terms fitted as zero
-        are dropped. Unknowns are ``E0 >= 0`` and ``E_k >= 0``; ``E0`` must come out > 0.
+        See :mod:`bem.prony_fit`: non-negative least squares on ``E'_fit/E' - 1`` and
+        ``E''_fit/E'' - 1``, so both moduli are fitted in relative error; terms fitted as
+        zero are dropped. On the default times (``times=None``, ``smoothing=0``) the kept
+        terms' times are then optimised too; given ``times`` are kept as they are.
         """
-        w = check_array("frequencies", frequencies, ndim=1, positive=True)
-        if hz:
-            w = 2 * np.pi * w
-        e1 = check_array("storage", storage, ndim=1, positive=True)
-        e2 = check_array("loss", loss, ndim=1)
-        if not (w.shape == e1.shape == e2.shape):
-            raise InputError(f"frequencies, storage and loss must have the same length, got "
-                             f"{w.size}, {e1.size}, {e2.size}")
-        if np.any(e2 < 0):
-            raise InputError("loss must be >= 0 Pa everywhere (a passive material dissipates)")
+        w, e1, e2 = check_dma(frequencies, storage, loss, hz=hz)
         if times is None:
-            per = check_positive("terms_per_decade", terms_per_decade)
-            lo, hi = np.log10(1 / w.max()), np.log10(1 / w.min())
-            n = max(int(np.ceil((hi - lo) * per)) + 1, 1)
-            taus = np.logspace(lo, hi, n)
+            taus = default_times(w, terms_per_decade)
         else:
             taus = check_array("times", times, ndim=1, positive=True)
-        wt = w[:, None] * taus[None, :]
-        scale = np.hypot(e1, e2)[:, None]
-        a = np.vstack([np.hstack([np.ones((w.size, 1)), wt**2 / (1 + wt**2)]) / scale,
-                       np.hstack([np.zeros((w.size, 1)), wt / (1 + wt**2)]) / scale])
-        b = np.concatenate([e1, e2]) / np.concatenate([scale[:, 0], scale[:, 0]])
-        colnorm = np.linalg.norm(a, axis=0)
-        colnorm[colnorm == 0] = 1.0
-        x, _ = nnls(a / colnorm, b, maxiter=50 * a.shape[1])
-        x = x / colnorm
-        if not x[0] > 0:
-            raise InputError("fit_prony: the data imply a relaxed modulus E0 <= 0; extend the data to lower "
-                             "frequencies or pass times covering them")
-        keep = x[1:] > 1e-12 * x.sum()
-        return cls(x[0], x[1:][keep], taus[keep], nu)
+        E0, moduli, taus, report = fit_prony_series(w, e1, e2, taus, smoothing=smoothing, refine=times is None)
+        return cls(E0, moduli, taus, nu, fit_report=report)
+
+    @classmethod
+    def fit_master_curve(cls, frequencies, temperatures, storage, loss, *, reference_temperature,
+                         shift="wlf", hz=False, terms_per_decade=3.0, smoothing=0.0, nu=0.5,
+                         temperature_tolerance=0.5, min_overlap=0.3, max_mismatch=0.05):
+        """Master curve and shift law from DMA sweeps at several temperatures.
+
+        Parameters
+        ----------
+        frequencies, storage, loss : array_like
+            One entry per measured point: frequency (rad/s, or Hz with ``hz=True``),
+            ``E'`` and ``E''`` (Pa, both > 0).
+        temperatures : array_like
+            Temperature of each point, K. Points within ``temperature_tolerance`` (K) of
+            each other form one isothermal sweep; at least 3 sweeps are needed.
+        reference_temperature : float
+            ``T_ref`` (K) of the returned material; within the measured range.
+        shift : {"wlf", "arrhenius"}
+            The law fitted to the shift factors.
+        terms_per_decade, smoothing, nu
+            As for :meth:`fit_prony`.
+        min_overlap : float
+            Fraction (0-1) of a sweep's span in log frequency that neighbouring sweeps must
+            share once shifted.
+        max_mismatch : float
+            Largest rms difference of log10 moduli (decades) between neighbouring sweeps
+            overlaid; beyond it the sweeps do not superpose and an InputError says so.
+
+        Returns
+        -------
+        (Material, WLF or Arrhenius)
+            The material at ``T_ref`` (its ``fit_report`` a
+            :class:`bem.master_curve.MasterCurveReport`: the fit's relative errors on the
+            shifted data and the shift factors) and the law, so that
+            ``material.at_temperature(T, law)`` describes the material at ``T``.
+
+        Notes
+        -----
+        The method (overlap shifting, the law, the fit) is described in
+        :mod:`bem.master_curve`.
+        """
+        E0, moduli, taus, law, report = master_curve.fit_master_curve(
+            frequencies, temperatures, storage, loss, reference_temperature=reference_temperature,
+            shift=shift, hz=hz, terms_per_decade=terms_per_decade, smoothing=smoothing,
+            temperature_tolerance=temperature_tolerance, min_overlap=min_overlap,
+            max_mismatch=max_mismatch)
+        return cls(E0, moduli, taus, nu, fit_report=report), law
+
+    def at_temperature(self, T, shift):
+        """The material at temperature ``T`` (K) under the shift law ``shift``.
+
+        ``shift(T)`` gives ``log10 a_T`` (e.g. :class:`bem.temperature.WLF`); every
+        relaxation and creep time is multiplied by ``a_T``, so that
+        ``E*(w)`` at ``T`` equals ``E*(a_T w)`` of this material (the reference), exactly:
+        the moduli and compliances are unchanged and the times scale by one rounding each.
+        """
+        if not callable(shift):
+            raise InputError(f"shift must be a callable giving log10 a_T(T) (e.g. bem.temperature.WLF), "
+                             f"got {shift!r}")
+        T = check_positive("T (K, absolute)", T)
+        factor = 10.0 ** float(shift(T))
+        if not (np.isfinite(factor) and factor > 0):
+            raise InputError(f"shift factor a_T at T = {T!r} K must be finite and > 0, got {factor!r}")
+        out = Material(self.E0, self.moduli, self.relaxation_times * factor, self.nu)
+        creep = self.creep_times * factor
+        creep.setflags(write=False)
+        object.__setattr__(out, "compliances", self.compliances)
+        object.__setattr__(out, "creep_times", creep)
+        return out
 
     # ------------------------------------------------------------------ responses
     @property

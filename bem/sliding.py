@@ -21,7 +21,6 @@ the pressure vanishes).
 """
 import logging
 import time
-from dataclasses import dataclass
 
 import numpy as np
 

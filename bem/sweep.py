@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import sliding
-from .checks import check_positive
+from .checks import check_positive, show
 from .errors import ConvergenceError, InputError
 
 __all__ = ["FrictionCurve", "friction_curve", "sweep", "check_sweep"]
@@ -121,7 +121,8 @@ def check_sweep(surface, material, *, speeds, loads, rtol):
 def _loads(load):
     if isinstance(load, (list, tuple, np.ndarray)):
         if len(load) == 0:
-            raise InputError("load must be a number > 0 or a non-empty list of them (N; N/m for profiles), got []")
+            raise InputError(f"load must be a number > 0 or a non-empty list of them (N; N/m for profiles), "
+                             f"got {show(load)}")
         return [check_positive("load", x) for x in load], True
     return [load], False
 
@@ -150,12 +151,16 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
     -------
     FrictionCurve, or a list of them (one per load) when ``load`` is a list.
     """
+    given = speeds
     try:
-        speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+        speeds = np.atleast_1d(np.asarray(speeds))
     except (TypeError, ValueError):
-        raise InputError(f"speeds must be a list of numbers (m/s), got {speeds!r}") from None
+        speeds = np.array([given], dtype=object)
+    if speeds.dtype.kind not in "iuf":  # strings, booleans, objects: not speeds
+        raise InputError(f"speeds must be a list of numbers (m/s), got {show(given)}")
+    speeds = speeds.astype(float)
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {speeds!r}")
+        raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {show(speeds.tolist())}")
     loads, several = _loads(load)
     checked = [sliding.check_inputs(surface, material, 0.0, x, None, rtol) for x in loads]
     surface, rtol = checked[0][0], checked[0][4]

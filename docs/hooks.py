@@ -4,8 +4,8 @@ A page holds a marker comment where a generated block goes:
 
 - ``<!-- generated:scene-keys -->``: every scene key the parser accepts
   (``viscobem_cli.scene.SCHEMA``), with the type, unit, default, range and meaning from the
-  code's table of keys (``viscobem_cli.schema.KEYS``) where it exists, else from
-  ``docs/_data/scene_keys.toml``; then the built-in scenes, read from their TOML files.
+  code's table of keys (``viscobem_cli.schema.KEYS``); then the built-in scenes, read from
+  their TOML files.
 - ``<!-- generated:validation -->``: the latest validation report (``docs/validation/``:
   ``report.json`` rendered by ``validation.report``, else ``report.md``) and the quick set's
   stored baselines (``validation/baselines/quick.json``).
@@ -34,11 +34,6 @@ from pathlib import Path
 
 from mkdocs.structure.files import File
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
 log = logging.getLogger("mkdocs.hooks.viscobem")
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # document and run the code of this checkout
@@ -52,24 +47,19 @@ _gallery = {}  # example stem -> (stdout, figure site path or None)
 
 
 def _key_table():
-    """{section: {key: {type, unit, default, range, doc}}}: the code's own table of scene keys
-    (``viscobem_cli.schema.KEYS``) where it exists, else ``docs/_data/scene_keys.toml``."""
-    try:
-        from viscobem_cli import schema
-    except ImportError:
-        schema = None
-    if schema is not None and hasattr(schema, "KEYS"):
-        table = {}
-        for k in schema.KEYS:
-            table.setdefault(k.section, {})[k.name] = {
-                "type": k.type,
-                "unit": k.unit,
-                "default": _toml_value(k.default),
-                "range": k.valid,
-                "doc": k.help,
-            }
-        return table
-    return tomllib.loads((DOCS / "_data" / "scene_keys.toml").read_text(encoding="utf-8"))
+    """{section: {key: {type, unit, default, range, doc}}} from the code's table of scene keys."""
+    from viscobem_cli import schema
+
+    table = {}
+    for k in schema.KEYS:
+        table.setdefault(k.section, {})[k.name] = {
+            "type": k.type,
+            "unit": k.unit,
+            "default": _toml_value(k.default),
+            "range": k.valid,
+            "doc": k.help,
+        }
+    return table
 
 
 def _toml_value(v):
@@ -91,26 +81,11 @@ def _scene_keys():
             continue
         out.append(f"### `[{section}]`\n" if section else "### Top level\n")
         info = described.get(section, {})
-        typed = any(d.get("type") for d in info.values())
-        out.append(
-            "| key |" + (" type |" if typed else "") + " unit | default | valid values | meaning |"
-        )
-        out.append("|---|" + ("---|" if typed else "") + "---|---|---|---|")
+        out.append("| key | type | unit | default | valid values | meaning |")
+        out.append("|---|---|---|---|---|---|")
         for key in _ordered(keys, info):
-            d = info.get(key)
-            if d is None:
-                log.info("scene key [%s] %s is not described", section, key)
-                d = {"doc": "(not described yet: see `viscobem scene`)"}
-            cells = (
-                [f"`{key}`"]
-                + ([d.get("type", "")] if typed else [])
-                + [
-                    d.get("unit", ""),
-                    d.get("default", "") or "none",
-                    d.get("range", ""),
-                    d.get("doc", ""),
-                ]
-            )
+            d = info[key]  # the schema's key names come from the same table
+            cells = [f"`{key}`", d["type"], d["unit"], d["default"] or "none", d["range"], d["doc"]]
             out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
         out.append("")
     return "\n".join(out)

@@ -104,7 +104,7 @@ def _nodal_pressure(r, lam, w):
 
 
 def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5, domain=None,
-                grading=1.3, steps_per_decade=20, solver="auto", maxiter=100):
+                grading=1.3, steps_per_decade=20, solver="auto", maxiter=100, vtk=None):
     """Creep indentation by a rigid sphere under a step load (axisymmetric FEM).
 
     Parameters
@@ -131,6 +131,9 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
     solver : {"auto", "splu", "pardiso"}
     maxiter : int
         Active-set iteration limit per step.
+    vtk : str or path, optional
+        Write a ``.pvd`` time series there: one ``.vtm`` (block and contact interface) per
+        output time (:func:`fem_reference.vtk.write_indentation`).
 
     Returns
     -------
@@ -175,7 +178,7 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
     out = {k: [] for k in ("a", "d", "p", "it")}
     U = stepper.unit_response(F)  # glassy response to unit ring forces
     w_unit = -U[top.ydofs]
-    t_prev, active, pres = 0.0, rc <= a_inf, None
+    t_prev, active, pres, snaps = 0.0, rc <= a_inf, None, []
     for t in grid:
         e, u_hist = stepper.prepare(t - t_prev)
         w = w_unit / e  # depression at all top nodes per unit force in this step
@@ -183,7 +186,8 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
         sol = solve_load_control(w[cand], hc, P, w0=w0[cand], active=active, maxiter=maxiter)
         if sol.active[-1]:
             raise ConvergenceError("the contact reached the edge of the candidate band; increase contact_band")
-        stepper.commit(U @ sol.lam / e + u_hist)
+        u_now = U @ sol.lam / e + u_hist
+        stepper.commit(u_now)
         active, t_prev = sol.active, t
         pres = _nodal_pressure(rc, sol.lam, top.weights[cand])
         if np.any(np.isclose(t, t_out, rtol=1e-12, atol=0)):
@@ -195,6 +199,13 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
                 out["d"].append(sol.d)
                 out["p"].append(float(pres.max()))
                 out["it"].append(sol.iterations)
+                if vtk is not None:
+                    snaps.append(dict(t=float(t), u=u_now, eps=stepper.eps, alpha=list(stepper.alpha),
+                                      pressure=pres, approach=sol.d))
+    if vtk is not None:
+        from .vtk import write_indentation
+
+        write_indentation(vtk, snaps, ops, material, R, P, rc)
     return IndentationResult(
         times=t_out, contact_radius=np.array(out["a"]), approach=np.array(out["d"]),
         peak_pressure=np.array(out["p"]), r=rc, pressure=pres, element_size=hs.element_size,

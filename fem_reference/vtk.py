@@ -22,6 +22,13 @@ Field data on both (arrays of one value unless stated): ``speed`` (m/s), ``load`
 (s, one entry per term), ``creep_times`` (s), ``dimensionless_speed`` (``V max(lambda_k) / a0``,
 retardation length over the relaxed Hertz half-width), ``friction``, ``approach`` (m) and
 ``units`` (a note).
+
+``write_indentation(path, ...)`` writes the creep indentation as a ``.pvd`` time series (time in s) of
+``.vtm`` files with the same names, in the ``(r, z)`` plane (x = r, y = z; the tensors' ``ZZ`` is the
+hoop component ``theta theta``): ``displacement``, ``strain``, ``viscous_strain_tau=<tau>s`` in the
+block; ``pressure``, ``gap``, ``contact``, ``depression`` on the interface; field data ``time``,
+``load`` (N), ``radius``, the material and ``units``. (The pressure unknown of the mixed solve is
+not kept by the time stepper, so the block carries no stress.)
 """
 from __future__ import annotations
 
@@ -31,7 +38,8 @@ import numpy as np
 
 from . import fields as derived
 
-__all__ = ["write_fields", "volume_grid", "interface_points", "metadata", "UNITS", "COMPONENTS"]
+__all__ = ["write_fields", "write_indentation", "volume_grid", "interface_points", "metadata", "UNITS",
+           "COMPONENTS"]
 
 UNITS = ("SI units: lengths and displacements m, stresses and pressures Pa, speed m/s, load N/m (per unit "
          "length in z), times s, dissipation W/m^3; strains dimensionless (tensor components, not engineering "
@@ -124,11 +132,9 @@ def metadata(result):
     m = result.material
     a0 = _hertz_half_width(m.E0, m.nu, result.radius, result.load)
     lam = float(np.max(m.creep_times)) if m.creep_times.size else 0.0
-    return dict(speed=[result.speed], load=[result.load], radius=[result.radius], E0=[m.E0], E_inf=[m.E_inf],
-                nu=[m.nu], prony_moduli=np.asarray(m.moduli, float),
-                relaxation_times=np.asarray(m.relaxation_times, float),
-                creep_times=np.asarray(m.creep_times, float), dimensionless_speed=[result.speed * lam / a0],
-                friction=[result.friction], approach=[result.approach], units=[UNITS])
+    return dict(speed=[result.speed], load=[result.load], radius=[result.radius], **_material_data(m),
+                dimensionless_speed=[result.speed * lam / a0], friction=[result.friction], approach=[result.approach],
+                units=[UNITS])
 
 
 def _add_field_data(dataset, meta):
@@ -154,3 +160,69 @@ def write_fields(path, fields, result=None):
     else:
         vol.save(path)
     return path
+
+
+def _axisymmetric_strain(v):
+    """Full tensors from axisymmetric Voigt ``(rr, zz, tt, rz)`` with engineering shear (x = r,
+    y = z, z = theta)."""
+    v = np.asarray(v, float).reshape(-1, 4)
+    return derived._tensor(v[:, 0], v[:, 1], v[:, 2], 0.5 * v[:, 3])
+
+
+def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
+    import pyvista as pv
+
+    mesh, basis, weights = ops.basis.mesh, ops.basis, ops.weights
+    nel = mesh.t.shape[1]
+    points = np.zeros((mesh.p.shape[1], 3))
+    points[:, :2] = mesh.p.T
+    cells = np.hstack([np.full((nel, 1), 4), mesh.t.T]).ravel()
+    vol = pv.UnstructuredGrid(cells, np.full(nel, pv.CellType.QUAD, dtype=np.uint8), points)
+    u = np.asarray(snap["u"])
+    disp = np.zeros((mesh.p.shape[1], 3))
+    disp[:, :2] = u[basis.nodal_dofs].T
+    vol.point_data["displacement"] = disp
+    vol.cell_data["strain"] = _cell_average(_axisymmetric_strain(snap["eps"]), weights, nel)
+    for tau, a in zip(material.relaxation_times, snap["alpha"], strict=True):
+        vol.cell_data[tau_name(tau)] = _cell_average(_axisymmetric_strain(a), weights, nel)
+    _name_components(vol)
+    pts = np.zeros((r.size, 3))
+    pts[:, 0] = r
+    iface = pv.PolyData(pts)
+    iface.lines = np.hstack([[r.size], np.arange(r.size)])
+    w = -u[top.ydofs[: r.size]]
+    iface.point_data["pressure"] = np.asarray(snap["pressure"], float)
+    iface.point_data["gap"] = w + r**2 / (2 * radius) - snap["approach"]
+    iface.point_data["contact"] = (np.asarray(snap["pressure"]) > 0).astype(np.uint8)
+    iface.point_data["depression"] = w
+    for ds in (vol, iface):
+        _add_field_data(ds, dict(meta, time=[snap["t"]], approach=[snap["approach"]]))
+    return pv.MultiBlock({"volume": vol, "interface": iface})
+
+
+def write_indentation(path, snapshots, ops, material, radius, load, r):
+    """Write the indentation ``snapshots`` (dicts with ``t``, ``u``, ``eps``, ``alpha``,
+    ``pressure`` at the candidate radii ``r``, ``approach``) as ``point_XXX.vtm`` files beside the
+    ``.pvd`` ``path``; returns the path."""
+    from xml.sax.saxutils import quoteattr
+
+    from .surface import top_surface
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    top = top_surface(ops.basis, axisymmetric=True)
+    meta = _material_data(material)
+    meta.update(load=[load], radius=[radius], units=[UNITS.replace("N/m (per unit length in z)", "N")])
+    entries = []
+    for k, snap in enumerate(snapshots):
+        name = f"{path.stem}_{k:03d}.vtm"
+        _indentation_snapshot(snap, ops, material, radius, np.asarray(r, float), top, meta).save(path.parent / name)
+        entries.append(f"  <DataSet timestep={quoteattr(repr(snap['t']))} file={quoteattr(name)}/>")
+    path.write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
+                    + "\n".join(entries) + "\n</Collection>\n</VTKFile>\n")
+    return path
+
+
+def _material_data(m):
+    return dict(E0=[m.E0], E_inf=[m.E_inf], nu=[m.nu], prony_moduli=np.asarray(m.moduli, float),
+                relaxation_times=np.asarray(m.relaxation_times, float), creep_times=np.asarray(m.creep_times, float))

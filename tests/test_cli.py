@@ -2,7 +2,6 @@
 import json
 import subprocess
 import sys
-
 from pathlib import Path
 
 import numpy as np
@@ -300,3 +299,32 @@ def test_scene_keys_table_documents_every_key():
     for section in ("",) + SECTIONS:  # every key the parser accepts has a row
         rows = {k.name for k in keys_of(section)} | (set(SECTIONS) if section == "" else set())
         assert scenes.SCHEMA[section] <= rows, f"add rows to viscobem_cli.schema.KEYS: {scenes.SCHEMA[section] - rows}"
+
+
+def test_a_sweep_that_misses_the_friction_peak_says_so(tmp_path):
+    """xi from 1e-4 to 1e-3 on the seed material: friction still rising at the end."""
+    from viscobem_cli.guidance import peak_warnings
+
+    path = tmp_path / "s.toml"
+    path.write_text(SMALL.replace("start = 1e-3, stop = 1e-1", "start = 1e-4, stop = 1e-3")
+                    .replace("vtk = true", "plots = false\nfields = false"))
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
+    warnings = json.loads((tmp_path / "o" / "results.json").read_text())["warnings"]
+    assert any("largest at the highest speed" in w and "xi.stop" in w for w in warnings), warnings
+    bell = {"load": 1.0, "xi": [1e-3, 1e-2, 1e-1], "friction": [0.1, 0.3, 0.2]}
+    assert peak_warnings([bell], "x") == []
+    falling = dict(bell, friction=[0.3, 0.2, 0.1])
+    assert "lowest speed" in peak_warnings([falling], "x")[0] and "xi.start" in peak_warnings([falling], "x")[0]
+
+
+def test_fields_in_float64_on_request(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text(SMALL.replace("vtk = true", 'vtk = false\nplots = false\nfields_precision = "float64"'))
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
+    with np.load(tmp_path / "o" / "fields.npz") as f:
+        assert f["pressure"].dtype == np.float64 and f["displacement"].dtype == np.float64
+        assert np.allclose(f["pressure"].mean(axis=(1, 2)) * 0.01**2, 0.3, rtol=1e-12)  # exact to round-off
+    # the point field files are folded into fields.npz; the numbers stay per point
+    assert sorted(p.suffix for p in (tmp_path / "o" / "points").iterdir()) == [".json"] * 3
+    with pytest.raises(scenes.InputError, match="fields_precision"):
+        scenes.parse(SMALL.replace("[outputs]", '[outputs]\nfields_precision = "float16"'))

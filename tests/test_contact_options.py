@@ -32,8 +32,9 @@ def test_every_field_is_validated_and_named(field):
 def test_special_fields_are_validated():
     with pytest.raises(InputError, match="options.precondition"):
         ContactOptions(precondition="lines")
-    with pytest.raises(InputError, match="options.line_dtype"):
-        ContactOptions(line_dtype=np.int32)
+    for bad in (np.int32, "foo", None):
+        with pytest.raises(InputError, match="options.line_dtype"):
+            ContactOptions(line_dtype=bad)
     with pytest.raises(InputError, match="options.restart_min"):
         ContactOptions(restart_min=300, restart_max=200)
     with pytest.raises(dataclasses.FrozenInstanceError):
@@ -44,7 +45,7 @@ def test_every_field_has_a_docstring_line():
     """Each tunable says what it trades (the attribute docstring right under it)."""
     source = inspect.getsource(ContactOptions)
     for f in dataclasses.fields(ContactOptions):
-        head, _, rest = source.partition(f"\n    {f.name}:")
+        _head, _, rest = source.partition(f"\n    {f.name}:")
         assert rest, f.name
         assert rest.split("\n")[1].strip().startswith('"""'), f"{f.name} has no docstring line"
 

@@ -108,3 +108,30 @@ def test_no_fields_unless_asked():
     m = Material.elastic(1e7, nu=0.3)
     r = rolling_cylinder(m, radius=0.01, load=100.0, speed=0.0, resolution=2)
     assert r.fields == {}
+
+
+def test_indentation_pvd_time_series(tmp_path):
+    """Creep indentation as a .pvd: one block + interface per output time, the time values, the
+    names and the last pressure profile of the result."""
+    pv = pytest.importorskip("pyvista")
+    from fem_reference import indentation
+
+    m = Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01, nu=0.5)
+    times = np.array([0.0, 0.01, 0.05])
+    r = indentation(m, radius=0.01, load=1.0, times=times, resolution=2, steps_per_decade=4,
+                    vtk=tmp_path / "creep.pvd")
+    reader = pv.get_reader(tmp_path / "creep.pvd")
+    np.testing.assert_allclose(reader.time_values, times)
+    reader.set_active_time_point(len(times) - 1)
+    blocks = reader.read()[0]  # the .pvd's one dataset at this time: the .vtm multiblock
+    vol, iface = blocks["volume"], blocks["interface"]
+    assert vol.cell_data["strain"].shape[1] == 9
+    assert vol.GetCellData().GetArray("strain").GetComponentName(8) == "ZZ"
+    assert tau_name(m.relaxation_times[0]) in vol.cell_data.keys()
+    np.testing.assert_allclose(iface.points[:, 0], r.r)
+    np.testing.assert_allclose(iface.point_data["pressure"], r.pressure)
+    contact = iface.point_data["contact"].astype(bool)
+    assert np.all(np.abs(iface.point_data["gap"][contact]) <= 1e-6 * r.approach[-1])
+    fd = iface.field_data
+    assert fd["time"][0] == pytest.approx(0.05) and fd["approach"][0] == pytest.approx(r.approach[-1])
+    assert fd["load"][0] == 1.0 and fd["E_inf"][0] == m.E_inf and "N" in str(fd["units"][0])

@@ -87,6 +87,7 @@ def test_interrupted_sweep_resumes_where_it_stopped(tmp_path, monkeypatch, refer
     for key, (mu, a) in _numbers(reference).items():
         assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
         assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
+        assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
     # a changed study in the same folder does not reuse the old points
     rec2 = run_scene(_scene(**{"load = 0.3": "load = 0.35"}), tmp_path, progress=False)
     assert rec2["resumed_points"] == 0
@@ -98,6 +99,7 @@ def test_process_pool_gives_the_same_points(tmp_path, reference):
     for key, (mu, a) in _numbers(reference).items():
         # warm starts differ between chunks: equal to the complementarity tolerance
         assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
+        assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
 
 
 def test_dask_local_cluster_gives_the_same_points(tmp_path, reference):
@@ -110,6 +112,7 @@ def test_dask_local_cluster_gives_the_same_points(tmp_path, reference):
     assert rec["solver"]["scheduler"] == cluster.scheduler_address and rec["all_converged"]
     for key, (mu, a) in _numbers(reference).items():
         assert _numbers(rec)[key][0] == pytest.approx(mu, rel=1e-6)
+        assert _numbers(rec)[key][1] == pytest.approx(a, abs=1e-12)
 
 
 def test_scene_without_anisotropy_does_not_compute_it(tmp_path, monkeypatch):
@@ -299,3 +302,11 @@ def test_killed_sweep_resumes_with_identical_results(tmp_path):
     with np.load(out / "fields.npz") as f, np.load(tmp_path / "whole" / "fields.npz") as g:
         assert f["pressure"].shape == g["pressure"].shape == (12, 64, 64)
         assert np.allclose(f["pressure"], g["pressure"], rtol=0, atol=1e-5 * g["pressure"].max())
+
+
+@pytest.mark.parametrize("speeds", ["0.01", ["0.01", "0.1"], [True, False], [-1.0, 0.1], [[0.1, 0.2]]])
+def test_friction_curve_wants_speeds_as_numbers(speeds):
+    s = _scene(**{"realisations = 2": "realisations = 1"})
+    with pytest.raises(InputError, match="speeds must be") as err:
+        bem.friction_curve(s.surface, s.material, speeds=speeds, load=0.3)
+    assert "np.float64" not in str(err.value)

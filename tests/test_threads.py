@@ -1,4 +1,6 @@
-"""One thread setting (bem.set_threads / bem.use_threads) that every FFT and pool honours."""
+"""One thread setting (bem.set_threads / bem.use_threads) that every FFT and pool honours:
+bem.fft, the isolated operator, the contact-map periodogram of bem.anisotropy, the line
+preconditioner's thread pool (tests/test_line_preconditioner.py) and the sweep's process pool."""
 import multiprocessing as mp
 from concurrent.futures import ProcessPoolExecutor
 
@@ -7,7 +9,7 @@ import pytest
 import scipy.fft
 
 import bem
-from bem import fft, parallel
+from bem import anisotropy, fft, parallel
 from bem.errors import InputError
 from bem.isolated import IsolatedHalfSpace
 from bem.periodic import PeriodicHalfSpace
@@ -19,7 +21,7 @@ ELASTIC = bem.Material.elastic(1e7)
 def fft_workers(monkeypatch):
     """The ``workers`` argument of every scipy.fft call made through bem."""
     seen = []
-    for name in ("rfftn", "irfftn", "ifft", "irfft"):
+    for name in ("rfftn", "irfftn", "ifft", "irfft", "fftn"):
         original = getattr(scipy.fft, name)
 
         def spy(*args, _original=original, **kwargs):
@@ -40,7 +42,8 @@ def test_fft_periodic_and_isolated_operators_use_the_setting(fft_workers, n):
         fft.inverse(fft.forward(x), x.shape)
         PeriodicHalfSpace((16, 16), 1e-3, ELASTIC, 0.0).displacement(x)
         IsolatedHalfSpace((16, 16), 1e-3, ELASTIC, 0.0).displacement(x)
-    assert len(fft_workers) >= 6 and set(fft_workers) == {n}
+        anisotropy.periodogram_full(x > 0, 1e-3)
+    assert len(fft_workers) >= 7 and set(fft_workers) == {n}
 
 
 def test_use_threads_restores_the_previous_setting_also_on_error():

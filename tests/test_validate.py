@@ -354,3 +354,50 @@ def test_rubber_fem_against_bem():
     assert not failed, failed
     assert {c.solver for c in out.checks} >= {"fem vs bem-reference", "bem-periodic vs bem-reference",
                                                "bem-isolated-adaptive vs bem-reference"}
+
+
+SCENE = """
+title = "vtk metadata"
+[material]
+E0 = 3.3333333333333335e6
+E_inf = 1.0e7
+creep_time = 0.01
+[surface]
+kind = "self_affine"
+length = 0.01
+n = 32
+hurst = 0.8
+scales = 8
+rms_height = 2.0e-5
+seed = 3
+[loading]
+load = 0.3
+xi = { start = 1e-2, stop = 1e-1, num = 2 }
+[outputs]
+vtk = true
+plots = false
+"""
+
+
+def test_cli_vti_carries_the_study_metadata(tmp_path):
+    """``viscobem run`` with VTK: each .vti names its speed, load, material and units, and holds the
+    pressure the results report."""
+    import pyvista as pv
+
+    path = tmp_path / "s.toml"
+    path.write_text(SCENE)
+    assert main(["run", str(path), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    rec = json.loads((tmp_path / "out" / "results.json").read_text())
+    curve = rec["friction_curve"]
+    for k in range(2):
+        grid = pv.read(tmp_path / "out" / "vtk" / f"point_{k:03d}.vti")
+        fd = grid.field_data
+        assert fd["speed"][0] == pytest.approx(curve["speed"][k], rel=1e-12)
+        assert fd["load"][0] == pytest.approx(0.3) and fd["cell_length"][0] == pytest.approx(0.01)
+        assert fd["friction"][0] == pytest.approx(curve["friction"][k], rel=1e-12)
+        assert fd["E0"][0] == pytest.approx(1e7 / 3) and fd["E_inf"][0] == pytest.approx(1e7)
+        assert fd["creep_times"][0] == pytest.approx(0.01)
+        assert fd["dimensionless_speed"][0] == pytest.approx(curve["xi"][k], rel=1e-9)
+        assert "Pa" in str(fd["units"][0]) and "m/s" in str(fd["units"][0])
+        p = np.asarray(grid.point_data["pressure"])
+        assert p.mean() * 0.01**2 == pytest.approx(0.3, rel=1e-6)  # fields stored in float32

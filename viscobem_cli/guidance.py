@@ -5,7 +5,8 @@
   the friction peak sits near ``v tau ~ a0`` whatever the domain).
 - :func:`describe_xi`: the time ``tau`` (and where it comes from) and the speeds that the
   sweep's ``xi`` range stands for.
-- :func:`resolution_warnings` (before the run) and :func:`friction_form_warnings` (after):
+- :func:`resolution_warnings` (before the run), :func:`friction_form_warnings` and
+  :func:`peak_warnings` (after):
   texts that say what is doubtful and what to change; the run prints them and stores them
   in ``results.json["warnings"]``.
 """
@@ -79,4 +80,26 @@ def friction_form_warnings(curves, tolerance=FORM_TOLERANCE, advice="Raise [surf
         out.append(f"at load {curve['load']:g}, the two friction forms (dissipation and eq. 6) differ by more "
                    f"than {100 * tolerance:g} % at {bad.size} of {mu.size} speeds (worst {100 * rel[worst]:.3g} % "
                    f"at xi = {curve['xi'][worst]:.3g}): the grid does not resolve the contact. {advice}")
+    return out
+
+
+def peak_warnings(curves, xi_time_source):
+    """A warning per load whose friction is largest at an end of the sweep: the peak (and the
+    physics of the hysteresis maximum) lies outside the xi range."""
+    out = []
+    for curve in curves:
+        mu = np.array([np.nan if x is None else x for x in curve["friction"]], dtype=float)
+        xi = np.asarray(curve["xi"], dtype=float)
+        ok = np.isfinite(mu) & (xi > 0)
+        if np.count_nonzero(ok) < 3:
+            continue
+        order = np.argsort(xi[ok])
+        mu, xi = mu[ok][order], xi[ok][order]
+        top = int(np.argmax(mu))
+        if 0 < top < mu.size - 1:
+            continue
+        side, key = ("highest", "stop") if top == mu.size - 1 else ("lowest", "start")
+        out.append(f"at load {curve['load']:g}, friction is largest at the {side} speed of the sweep (xi = "
+                   f"{xi[top]:.3g}): the friction peak lies outside the xi range. Extend [loading] xi.{key} "
+                   f"(tau is {xi_time_source}).")
     return out

@@ -6,7 +6,8 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
                                               built-in scene); rerun on the same DIR to resume
     viscobem scene [NAME]                     print a built-in scene (default: the template)
     viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem, isolated,
-                                              rubber_speeds, import); writes only under DIR
+                                              rubber_speeds, import, materials); writes only
+                                              under DIR
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
@@ -47,6 +48,11 @@ def _cmd_run(args):
                        workers=args.workers)
     if record["resumed_points"]:
         print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
+    if "temperature_sweep" in record:  # a sweep per temperature: the table of mu(v, T) first
+        from .temperatures import summary
+
+        print(summary(record))
+        print(f"  at {record['friction_curve_temperature']:g} K:")
     _print_curve(record["friction_curve"], record["surface"].get("hertz_radius_relaxed", [None])[0])
     for text in record["warnings"][len(scene.warnings):]:
         print(f"  WARNING: {text}")
@@ -91,7 +97,7 @@ def _cmd_bench(args):
     if args.name == "import":
         from . import import_bench
 
-        import_bench.run(out_dir=args.out, repeats=2 if args.quick else 7)
+        import_bench.run(out_dir=args.out, repeats=1 if args.quick else 7)
         return 0
     if args.name != "all":
         module = importlib.import_module(f"viscobem_bench.{args.name}")
@@ -152,7 +158,8 @@ def _cmd_validate(args):
             print(f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
                   f"(allowed +-{r['allowed']:.3g})")
         if comparison["missing"]:
-            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {comparison['missing'][0]['key']}); "
+            first = comparison["missing"][0]["key"]
+            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
                   f"regenerate with: viscobem validate --quick --update-baselines --out DIR")
         print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
         status = status or (0 if comparison["ok"] else 1)
@@ -213,9 +220,10 @@ def build_parser():
     scene.set_defaults(func=_cmd_scene)
     bench = sub.add_parser("bench", help="run a benchmark (writes only under --out)")
     bench.add_argument("name", nargs="?", default="all",
-                       choices=["all", "periodic", "fem", "isolated", "rubber_speeds", "import"],
-                       help="all (default: every solver, scaling, skipping), one detailed benchmark, or "
-                            "import (import time of bem against numpy + scipy)")
+                       choices=["all", "periodic", "fem", "isolated", "rubber_speeds", "import", "materials"],
+                       help="all (default: every solver, scaling, skipping), one detailed benchmark, "
+                            "import (import time of bem against numpy + scipy), or materials (Prony fits "
+                            "and master curves against pyvisco)")
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)

@@ -206,7 +206,7 @@ def deformed_surface(surface, f, xi, path, *, periodic=True, direction=0.0):
         rigid, solid, where = rigid[:, row], solid[:, row], f" at y = {surface.x[row] * 1e3:.3g} mm (dashed)"
     else:
         fig, bottom = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
-        touch, where = np.asarray(f.pressure) > 0, ""
+        touch, where = np.asarray(f.pressure) > 0, rf" at $\xi$ = {xi:.3g}"
     bottom.plot(x, rigid, "k-", lw=1.0, label="rigid surface")
     bottom.plot(x, solid, "C0-", lw=1.2, label="deformed solid surface")
     low = min(rigid.min(), solid.min())

@@ -7,8 +7,11 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
     title = "..."                      # optional
     [material]   nu = 0.5 and one of:  E  |  E0, E_inf, creep_time | relaxation_time
                  |  E0, moduli, times (Prony)  |  E0, compliances, times (creep)
-                 |  dma = "file.csv" (columns: frequency, storage E' (Pa), loss E'' (Pa);
-                    dma_frequency_unit = "rad/s" | "Hz"; dma_terms_per_decade = 2.0)
+                 |  dma = "file.csv" (columns: frequency, storage E', loss E'' [, temperature];
+                    dma_frequency_unit = "rad/s" | "Hz"; dma_modulus_unit = "Pa" | "kPa" | "MPa" | "GPa";
+                    dma_temperature_unit = "K" | "C"; dma_terms_per_decade = 3.0)
+                 shift = { law = "wlf", C1, C2, reference_temperature (K) } | { law = "arrhenius",
+                    activation_energy (J/mol), reference_temperature (K) }  (see viscobem_cli.temperatures)
     [surface]    kind = "self_affine" | "sinusoid" | "file" | "sphere" | "cylinder", length (m),
                  n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
@@ -21,8 +24,9 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
                               unit, scan_size, channel (viscobem_cli.measured_scene)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
-                 material's longest creep time); direction_deg (sliding direction from +x toward +y,
-                 degrees; a list sweeps it: viscobem_cli.directions)
+                 material's longest creep time); temperatures = [...] (K; needs a shift law);
+                 direction_deg (sliding direction from +x toward +y, degrees; a list sweeps it:
+                 viscobem_cli.directions)
     [solver]     rtol, maxiter, warm_start, workers (processes, default 1), chunk (speeds per
                  task), scheduler ("tcp://host:port" of a dask.distributed cluster), fold_tol,
                  periodic (default false for sphere and cylinder, true otherwise),
@@ -41,8 +45,7 @@ from bem import Material, surfaces
 from bem.checks import check_positive
 from bem.errors import InputError
 
-from . import guidance
-from . import scene_values
+from . import guidance, scene_values, temperatures
 from .catalog import SCENE_DIR, builtin_scenes, scene_path
 
 __all__ = ["Scene", "parse", "load", "describe_xi", "builtin_scenes", "SCENE_DIR", "DEFAULT_SCENE", "SCHEMA",
@@ -57,12 +60,13 @@ else:  # pragma: no cover
 SCHEMA = {
     "": {"title", "material", "surface", "loading", "solver", "outputs", "analysis"},
     "material": {"nu", "E", "E0", "E_inf", "creep_time", "relaxation_time", "moduli", "times",
-                 "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade"},
+                 "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade",
+                 "dma_modulus_unit", "dma_temperature_unit", "shift"},
     "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
                 "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
                 "realisations", "radius", "exact",
                 "detrend", "boundary", "window", "alpha", "scan_size", "channel"},  # kind = "measured"
-    "loading": {"load", "speeds", "xi", "xi_time", "direction_deg"},
+    "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
     "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
                "method"},
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson",
@@ -107,6 +111,9 @@ class Scene:
     xi_time_source: str = ""
     warnings: tuple = ()  # texts that explain a doubtful setting and what to change
     fields_precision: str = "float32"
+    shift: object = None  # time-temperature shift law (bem.temperature), or None
+    temperatures: tuple = ()  # K; a sweep per temperature when given
+    dma: dict = field(default=None, repr=False)  # the DMA table in SI (viscobem_cli.temperatures.read_dma)
     directions: tuple = (0.0,)  # sliding directions (radians), see viscobem_cli.directions
 
     @property
@@ -163,20 +170,7 @@ def _material(t, base):
         return Material.from_prony(E0=t["E0"], moduli=t["moduli"], times=t.get("times", []), nu=nu)
     if kind == "creep":
         return Material.from_creep(E0=t["E0"], compliances=t["compliances"], times=t.get("times", []), nu=nu)
-    if not isinstance(t["dma"], str):
-        raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
-    path = (base / t["dma"]).resolve()
-    try:
-        data = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2)
-    except (OSError, ValueError) as err:
-        raise InputError(f"[material] dma: cannot read {str(path)!r}: {err}") from None
-    if data.shape[1] < 3:
-        raise InputError(f"[material] dma: {str(path)!r} needs 3 columns (frequency, storage, loss)")
-    unit = t.get("dma_frequency_unit", "rad/s")
-    if unit not in ("rad/s", "Hz"):
-        raise InputError(f"[material] dma_frequency_unit must be 'rad/s' or 'Hz', got {unit!r}")
-    return Material.fit_prony(data[:, 0], data[:, 1], data[:, 2], hz=unit == "Hz",
-                              terms_per_decade=t.get("dma_terms_per_decade", 2.0), nu=nu)
+    return temperatures.dma_material(t, base, nu)  # 3 columns: a Prony fit; 4: a master curve
 
 
 def _surface(t, base):
@@ -325,7 +319,8 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
                  raw=raw, realisations=realisations, loads=loads, contact_level=float(level),
                  psd_smoothing=float(smoothing), plot_xi=None if plot_xi is None else float(plot_xi),
                  xi_length=float(xi_length), xi_time_source=tau_source, warnings=tuple(warnings),
-                 fields_precision=precision, **run)
+                 fields_precision=precision, **run, **temperatures.scene_fields(raw, material),
+                 dma=temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None)
 
 
 def load(path=None, *, overrides=()):

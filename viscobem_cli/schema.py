@@ -47,10 +47,11 @@ KEYS = [
     Key("material", "compliances", "list", "1/Pa", None, "numbers > 0",
         "Creep-compliance series terms (with E0, times)."),
     Key("material", "dma", "string", "", None, "a file path",
-        "DMA table (columns: frequency, storage E' (Pa), loss E'' (Pa)) fitted by a Prony series; "
-        "relative to the scene file."),
+        "DMA table (columns: frequency, storage E', loss E'', and optionally temperature) fitted by a Prony "
+        "series; with a temperature column, a master curve and its shift law (see shift); relative to the "
+        "scene file."),
     Key("material", "dma_frequency_unit", "string", "", "rad/s", "rad/s | Hz", "Unit of the DMA frequencies."),
-    Key("material", "dma_terms_per_decade", "number", "", 2.0, "> 0", "Prony terms per decade of the DMA fit."),
+    Key("material", "dma_terms_per_decade", "number", "", 3.0, "> 0", "Prony terms per decade of the DMA fit."),
     # [surface]
     Key("surface", "kind", "string", "", None, "self_affine | sinusoid | file | sphere | cylinder",
         "Rigid surface type (required)."),

@@ -34,9 +34,17 @@ import numpy as np
 
 from bem.sweep import check_sweep
 
-from . import analysis, guidance, records
-from .sweep import (STUDY_FIELDS, execute, load_fields, load_point, point_key, point_name, remove_stale_temporaries,
-                    write_atomic)
+from . import analysis, guidance, records, temperatures
+from .sweep import (
+    STUDY_FIELDS,
+    execute,
+    load_fields,
+    load_point,
+    point_key,
+    point_name,
+    remove_stale_temporaries,
+    write_atomic,
+)
 
 __all__ = ["run_scene", "write_atomic", "fold_material"]
 
@@ -197,7 +205,7 @@ def _outputs(scene, record, recs, points_dir, out, extras, stages):
 def _plots(scene, record, fields, extras, out):
     from . import plots
 
-    return plots.write_all(scene, record, fields, extras, out)
+    return plots.write_all(scene, record, fields, extras, out) + temperatures.write_master_curve(scene, out)
 
 
 def _vtk(scene, fields, out):
@@ -220,6 +228,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
 
         return run_sweep(run_scene, scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     check_sweep(scene.surface, scene.material, speeds=scene.speeds, loads=scene.loads, rtol=scene.rtol)
+    if scene.temperatures:  # one sweep per temperature (viscobem_cli.temperatures)
+        return temperatures.run(scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)
@@ -258,6 +268,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     _write_record(out, scene, record, recs)  # the curves, for the plots
     advice = "Raise [surface] n until they agree." if scene.kind in ("sphere", "cylinder") else None
     record["warnings"] += guidance.friction_form_warnings(record["curves"], **({"advice": advice} if advice else {}))
+    record["warnings"] += guidance.peak_warnings(record["curves"], scene.xi_time_source)
     record["files"] = _outputs(scene, record, recs, points_dir, out, extras, stages)
     if scene.surface.metadata.get("kind") == "measured":  # boundary choice and PSD of the measurement
         from .measured_scene import report

@@ -21,7 +21,7 @@ from bem import Material
 from validation import metrics
 
 from .base import Case, CaseOutput, Profile, Sweep
-from .cylinder import solve_all
+from .cylinder import at_speed, solve_all
 from .fem_checks import fem_self_checks
 from .solvers import bem_isolated_cylinder, bem_periodic_cylinder, fem_cylinder
 
@@ -141,8 +141,9 @@ def _run_fem(out, material, cfg, vtk_dir, root, tamper):
         f, ref = f_runs["fem"][k], r_runs["bem-reference"][k]
         if not (out.converged("fem", label, f) and out.converged("bem-reference", label, ref)):
             continue
-        fem_self_checks(out, label, f, cfg["tol"]["fem"]["balance"], cfg["why"]["fem"]["balance"])
-        mid, pf, pr = compare(out, cfg["tol"]["fem"], cfg["why"]["fem"], "fem", f, ref, label)
+        tol, why = at_speed(cfg["tol"]["fem"], V), at_speed(cfg["why"]["fem"], V)
+        fem_self_checks(out, label, f, tol["balance"], why["balance"])
+        mid, pf, pr = compare(out, tol, why, "fem", f, ref, label)
         out.profiles.append(Profile(f"{label} m/s, FEM material E_inf/E0 = {m_fem.E_inf / m_fem.E0:.3g}, "
                                     f"{m_fem.moduli.size} terms (bin averages)",
                                     {"fem": (mid, pf), "bem-reference": (mid, pr)}, reference="bem-reference",

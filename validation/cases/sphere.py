@@ -38,11 +38,11 @@ SPHERE_BEM = {"bem-periodic": bem_periodic_sphere, "bem-isolated-uniform": _isol
               "bem-isolated-adaptive": _isolated("adaptive")}
 
 
-def _fem_indentation(material, times, resolution, steps_per_decade, load=P):
+def _fem_indentation(material, times, resolution, steps_per_decade, load=P, vtk=None):
     import fem_reference
 
     return fem_reference.indentation(material, radius=R, load=load, times=np.asarray(times, float),
-                                     resolution=resolution, steps_per_decade=steps_per_decade)
+                                     resolution=resolution, steps_per_decade=steps_per_decade, vtk=vtk)
 
 
 def _a0(material):
@@ -140,7 +140,12 @@ def run_creep(*, quick, vtk_dir, root, tamper):
     times = np.array(cfg["t"]) * lam
     out = CaseOutput()
     m_fem, _, p_fem = tamper.inputs("fem", material, 0.0, P)
-    fem, cost = metrics.measure(_fem_indentation, m_fem, times, cfg["resolution"], cfg["steps_per_decade"], p_fem)
+    pvd = None if vtk_dir is None else vtk_dir / "fem" / "creep.pvd"
+    fem, cost = metrics.measure(_fem_indentation, m_fem, times, cfg["resolution"], cfg["steps_per_decade"], p_fem,
+                                pvd)
+    if pvd is not None:
+        out.files += [str(f.relative_to(root)) for f in sorted(pvd.parent.glob("creep_*.vtm"))]
+        out.files.append(str(pvd.relative_to(root)))
     out.cost("fem", "all times", cost, f"{fem.n_unknowns} unknowns, {fem.n_steps} steps, h = {fem.element_size:.3e} m")
     a_ex = lee_radok.contact_radius(material, R, P, times)
     d_ex = lee_radok.approach(material, R, P, times)

@@ -1,0 +1,286 @@
+"""Temperature in scenes: DMA tables with units, shift laws, and friction against speed and T.
+
+Scene keys (temperatures are in kelvin wherever a scene gives one)::
+
+    [material]
+    dma = "sweeps.csv"            # columns: frequency, E', E'' [, temperature]
+    dma_frequency_unit = "Hz"     # "rad/s" (default) | "Hz"
+    dma_modulus_unit = "MPa"      # "Pa" (default) | "kPa" | "MPa" | "GPa"
+    dma_temperature_unit = "C"    # "K" (default) | "C" (degrees Celsius)
+    shift = { law = "wlf", C1 = 8.86, C2 = 101.6, reference_temperature = 296.15 }
+         # or { law = "arrhenius", activation_energy = 1.5e5, reference_temperature = 296.15 } (J/mol, K)
+         # with a 4-column DMA table: { law = "wlf" | "arrhenius", reference_temperature = ... }
+         # and the law's parameters are fitted to the sweeps (bem.Material.fit_master_curve)
+    [loading]
+    temperatures = [273.15, 296.15, 323.15]   # K; needs a shift law
+
+The material of the scene is the one at the law's reference temperature. With
+``temperatures``, the speed sweep runs once per temperature on
+``material.at_temperature(T, law)``, each in its own folder ``T_<value>K`` (resumable like any
+sweep), and the study's ``results.json`` gains ``temperature_sweep``: friction and contact
+fraction per temperature and speed. Plots: ``friction_speed_temperature.png`` (a heat map of
+the friction coefficient over log10 speed and T) and ``friction_curves_temperatures.png``
+(one curve per temperature); ``master_curve.png`` when the material was fitted to sweeps at
+several temperatures (raw data, data shifted by the fitted law, and the fit).
+"""
+import dataclasses
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from bem import Material
+from bem.errors import InputError
+from bem.master_curve import MasterCurveReport
+from bem.temperature import WLF, Arrhenius
+
+from .sweep import write_atomic
+
+FREQUENCY_UNITS = {"rad/s": 1.0, "Hz": 2 * np.pi}
+MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
+TEMPERATURE_OFFSETS = {"K": 0.0, "C": 273.15}
+SHIFT_KEYS = {"wlf": {"law", "C1", "C2", "reference_temperature"},
+              "arrhenius": {"law", "activation_energy", "reference_temperature"}}
+
+
+def _unit(t, key, table, default):
+    unit = t.get(key, default)
+    if unit not in table:
+        raise InputError(f"[material] {key} must be one of {', '.join(map(repr, table))}, got {unit!r}")
+    return table[unit]
+
+
+def read_dma(t, base):
+    """The DMA table of ``[material] dma`` in SI: ``w`` (rad/s), ``e1``, ``e2`` (Pa), ``T`` (K or None)."""
+    if not isinstance(t["dma"], str):
+        raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
+    path = (Path(base) / t["dma"]).resolve()
+    try:
+        data = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2)
+    except (OSError, ValueError) as err:
+        raise InputError(f"[material] dma: cannot read {str(path)!r}: {err}") from None
+    if data.shape[1] not in (3, 4):
+        raise InputError(f"[material] dma: {str(path)!r} needs 3 columns (frequency, storage, loss) or 4 "
+                         f"(frequency, storage, loss, temperature), got {data.shape[1]}")
+    w = data[:, 0] * _unit(t, "dma_frequency_unit", FREQUENCY_UNITS, "rad/s")
+    scale = _unit(t, "dma_modulus_unit", MODULUS_UNITS, "Pa")
+    offset = _unit(t, "dma_temperature_unit", TEMPERATURE_OFFSETS, "K")
+    temps = data[:, 3] + offset if data.shape[1] == 4 else None
+    return {"w": w, "e1": data[:, 1] * scale, "e2": data[:, 2] * scale, "T": temps, "path": str(path)}
+
+
+def _shift_table(t):
+    table = t.get("shift")
+    if table is None:
+        return None
+    if not isinstance(table, dict) or table.get("law") not in SHIFT_KEYS:
+        raise InputError("[material] shift must be a table with law = 'wlf' or 'arrhenius', got "
+                         f"{table!r}")
+    unknown = sorted(set(table) - SHIFT_KEYS[table["law"]])
+    if unknown:
+        raise InputError(f"[material] shift: unknown key(s) {', '.join(map(repr, unknown))} for law = "
+                         f"{table['law']!r}; valid keys: {', '.join(sorted(SHIFT_KEYS[table['law']]))}")
+    if "reference_temperature" not in table:
+        raise InputError("[material] shift: reference_temperature (K) is required")
+    return table
+
+
+def dma_material(t, base, nu):
+    """The material of a DMA table: a Prony fit (3 columns) or a master curve (4 columns)."""
+    data = read_dma(t, base)
+    per = t.get("dma_terms_per_decade", 3.0)
+    if data["T"] is None:
+        return Material.fit_prony(data["w"], data["e1"], data["e2"], terms_per_decade=per, nu=nu)
+    table = _shift_table(t)
+    if table is None or set(table) - {"law", "reference_temperature"}:
+        raise InputError("[material] a DMA table with a temperature column needs shift = { law = 'wlf' | "
+                         "'arrhenius', reference_temperature = <K> } (the law's parameters are fitted to "
+                         "the sweeps), got " + repr(table))
+    material, _ = Material.fit_master_curve(data["w"], data["T"], data["e1"], data["e2"],
+                                            reference_temperature=table["reference_temperature"],
+                                            shift=table["law"], terms_per_decade=per, nu=nu)
+    return material
+
+
+def shift_law(t, material):
+    """The scene's shift law: given in ``[material] shift``, or fitted with the master curve."""
+    if isinstance(material.fit_report, MasterCurveReport):
+        return material.fit_report.law
+    table = _shift_table(t)
+    if table is None:
+        return None
+    missing = sorted(SHIFT_KEYS[table["law"]] - set(table))
+    if missing:
+        raise InputError(f"[material] shift: {', '.join(missing)} required for law = {table['law']!r} "
+                         "(or give a DMA table with a temperature column to fit them)")
+    args = {k: v for k, v in table.items() if k != "law"}
+    for key, value in args.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise InputError(f"[material] shift: {key} must be a number, got {value!r}")
+    return WLF(**args) if table["law"] == "wlf" else Arrhenius(**args)
+
+
+def loading_temperatures(t, law):
+    """``[loading] temperatures`` (K) as a tuple; empty when not given."""
+    if "temperatures" not in t:
+        return ()
+    values = t["temperatures"]
+    if not (isinstance(values, list) and values and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf for v in values)):
+        raise InputError(f"[loading] temperatures must be a non-empty list of absolute temperatures > 0 K, "
+                         f"got {values!r}")
+    if law is None:
+        raise InputError("[loading] temperatures need a shift law: [material] shift = { law = 'wlf', C1, C2, "
+                         "reference_temperature } or a DMA table with a temperature column")
+    for v in values:
+        law(float(v))  # a WLF law names temperatures at or below T_ref - C2
+    return tuple(float(v) for v in values)
+
+
+def scene_fields(raw, material):
+    """``{"shift": law or None, "temperatures": tuple}`` for the Scene, from the raw tables."""
+    law = shift_law(raw["material"], material)
+    return {"shift": law, "temperatures": loading_temperatures(raw["loading"], law)}
+
+
+def folder_name(T):
+    return f"T_{T:.2f}K"
+
+
+def run(scene, out_dir, *, progress=True, scheduler=None, workers=None):
+    """The speed sweep at every temperature of ``scene``; the combined record (also written)."""
+    from .study import run_scene
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    started = time.perf_counter()
+    records = []
+    for T in scene.temperatures:
+        sub = dataclasses.replace(scene, material=scene.material.at_temperature(T, scene.shift), temperatures=())
+        records.append(run_scene(sub, out / folder_name(T), progress=progress, scheduler=scheduler,
+                                 workers=workers))
+    law = scene.shift
+    table = {"temperature": list(scene.temperatures), "units": {"temperature": "K", "speed": "m/s"},
+             "shift": {"law": type(law).__name__, **vars(law)},
+             "log10_shift_factor": [float(law(T)) for T in scene.temperatures],
+             "folders": [folder_name(T) for T in scene.temperatures], "loads": []}
+    for k, load in enumerate(scene.loads):
+        curves = [r["curves"][k] for r in records]
+        table["loads"].append({"load": load, "speed": curves[0]["speed"],
+                               "friction": [c["friction"] for c in curves],
+                               "contact_fraction": [c["contact_fraction"] for c in curves]})
+    nearest = int(np.argmin(np.abs(np.array(scene.temperatures) - law.reference_temperature)))
+    record = {key: records[nearest][key] for key in ("title", "scene", "material", "surface", "units",
+                                                     "conventions", "solver", "outputs", "friction_curve",
+                                                     "curves")}
+    extra = [f"at {T:g} K: {w}" for T, r in zip(scene.temperatures, records) for w in r["warnings"][len(scene.warnings):]]
+    record.update(temperature_sweep=table, friction_curve_temperature=scene.temperatures[nearest],
+                  warnings=list(scene.warnings) + extra,
+                  resumed_points=sum(r["resumed_points"] for r in records),
+                  all_converged=all(r["all_converged"] for r in records), complete=True,
+                  stages={"total": time.perf_counter() - started})
+    files = [f"{folder_name(T)}/{name}" for T, r in zip(scene.temperatures, records) for name in r["files"]]
+    if scene.outputs.get("plots"):
+        files += plot_temperature_sweep(table, out)
+    files += write_master_curve(scene, out)
+    record["files"] = ["results.json"] + files
+    write_atomic(out / "results.json", json.dumps(record, indent=1))
+    return record
+
+
+def summary(record):
+    """Text table of the friction coefficient per speed (rows) and temperature (columns)."""
+    table = record["temperature_sweep"]
+    lines = []
+    for sweep in table["loads"]:
+        lines.append(f"  friction coefficient at load {sweep['load']:g} (N; N/m for profiles), by temperature (K):")
+        lines.append("  " + f"{'speed (m/s)':>12}" + "".join(f"{T:>10.2f}" for T in table["temperature"]))
+        for i, v in enumerate(sweep["speed"]):
+            cells = [sweep["friction"][k][i] for k in range(len(table["temperature"]))]
+            lines.append("  " + f"{v:12.4e}" + "".join(f"{'failed':>10}" if c is None else f"{c:10.5f}" for c in cells))
+    return "\n".join(lines)
+
+
+def plot_temperature_sweep(table, out):
+    """Heat map of the friction coefficient over (log10 v, T) and curves per temperature."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    T = np.array(table["temperature"])
+    sweep = table["loads"][0]
+    v = np.array(sweep["speed"], dtype=float)
+    mu = np.array([[np.nan if x is None else x for x in row] for row in sweep["friction"]], dtype=float)
+    written = []
+    moving = v > 0
+    if moving.sum() >= 2 and T.size >= 2:
+        order = np.argsort(T)
+        fig, ax = plt.subplots(figsize=(6.4, 4.4))
+        mesh = ax.pcolormesh(np.log10(v[moving]), T[order], mu[order][:, moving], shading="nearest", cmap="viridis")
+        fig.colorbar(mesh, ax=ax, label="friction coefficient")
+        ax.set_xlabel("log10 sliding speed (m/s)")
+        ax.set_ylabel("temperature (K)")
+        ax.set_title(f"friction against speed and temperature (load {sweep['load']:g} N, or N/m for profiles)")
+        written.append(_save(fig, out / "friction_speed_temperature.png"))
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for k in np.argsort(T):
+        ax.plot(v[moving], mu[k][moving], marker="o", ms=3, label=f"{T[k]:.1f} K")
+    ax.set_xscale("log")
+    ax.set_xlabel("sliding speed (m/s)")
+    ax.set_ylabel("friction coefficient")
+    ax.legend(fontsize="small")
+    written.append(_save(fig, out / "friction_curves_temperatures.png"))
+    return written
+
+
+def write_master_curve(scene, out):
+    """``master_curve.png`` when the material was fitted to DMA sweeps at several temperatures."""
+    report = scene.material.fit_report
+    if not (isinstance(report, MasterCurveReport) and scene.outputs.get("plots") and scene.dma is not None):
+        return []
+    return [plot_master_curve(scene.dma, scene.material, report.law, Path(out) / "master_curve.png")]
+
+
+def plot_master_curve(data, material, law, path):
+    """Raw sweeps (E', E'' against w), the same shifted to the reference by ``law``, and the fit."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    w, T = data["w"], data["T"]
+    wr = w * 10.0 ** law(T)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), sharey=True)
+    colors = plt.cm.coolwarm((T - T.min()) / max(np.ptp(T), 1e-12))
+    for ax, x, title in ((axes[0], w, "measured sweeps"),
+                         (axes[1], wr, f"shifted to {law.reference_temperature:g} K, and the fit")):
+        ax.scatter(x, data["e1"], s=8, c=colors, marker="o", label="E' (data)")
+        ax.scatter(x, data["e2"], s=8, c=colors, marker="^", label="E'' (data)")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("angular frequency (rad/s)" if x is w else "reduced frequency a_T w (rad/s)")
+        ax.set_title(title)
+    grid = np.logspace(np.log10(wr.min()), np.log10(wr.max()), 400)
+    e = material.complex_modulus(grid)
+    axes[1].plot(grid, e.real, "k-", lw=1.2, label="E' (Prony fit)")
+    axes[1].plot(grid, e.imag, "k--", lw=1.2, label="E'' (Prony fit)")
+    axes[0].set_ylabel("modulus (Pa); colour: temperature (blue cold, red hot)")
+    axes[1].legend(fontsize="small")
+    name = type(law).__name__
+    params = ", ".join(f"{k} = {v:.4g}" for k, v in vars(law).items() if k != "reference_temperature")
+    fig.suptitle(f"master curve: {name} ({params})")
+    return _save(fig, path)
+
+
+def _save(fig, path):
+    import io
+
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    write_atomic(path, buf.getvalue(), mode="wb")
+    return Path(path).name
