@@ -27,7 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .kinematics import mixed_blocks
-from .linsolve import factorize
+from .linsolve import factorize, solve_refined
 from .transport import exponential_weights
 
 __all__ = ["AxisymmetricStepper", "fixed_dofs_axisymmetric"]
@@ -64,7 +64,9 @@ class AxisymmetricStepper:
         self.alpha = [np.zeros(n) for _ in self.g]
         mb, f = self.blocks, self.free
         A = sp.bmat([[mb.K[f][:, f], -mb.G[f]], [-mb.G[f].T, -mb.c * mb.M]], format="csc")
+        self.matrix = A.tocsr()
         self.factor = factorize(A, solver)
+        self.residual = 0.0  # largest relative residual ||A x - b|| / ||b|| so far
         self._pending = None
 
     @property
@@ -83,7 +85,10 @@ class AxisymmetricStepper:
         rhs = np.zeros((self.n_unknowns,) + rhs_u.shape[1:])
         rhs[: f.size] = rhs_u[f]
         rhs[f.size:] = rhs_p
-        x = self.factor.solve(rhs)
+        if not np.any(rhs):
+            return np.zeros((self.ops.B.shape[1],) + rhs_u.shape[1:])
+        x, res = solve_refined(self.matrix, self.factor, rhs)
+        self.residual = max(self.residual, res)
         u = np.zeros((self.ops.B.shape[1],) + rhs_u.shape[1:])
         u[f] = x[: f.size]
         return u

@@ -24,6 +24,7 @@ from bem.material import Material
 from .axisymmetric import AxisymmetricStepper, fixed_dofs_axisymmetric
 from .contact import solve_load_control
 from .kinematics import quadrature_operators
+from .linsolve import RESIDUAL_LIMIT
 from .mesh import half_space_mesh
 from .surface import contact_edges, top_surface
 
@@ -53,6 +54,15 @@ class IndentationResult:
         Active-set iterations per requested time.
     timings : dict
         Wall time (s) of the whole run under ``total``.
+    success, message : bool, str
+        True only if every linear solve has ``linear_residual <= 1e-8`` and every step's
+        complementarity ``residual`` is below 1e-9.
+    linear_residual : float
+        Largest ``||A x - b|| / ||b||`` of the linear solves (SuperLU or PARDISO).
+    residual : float
+        Largest complementarity residual of the steps' active-set solves.
+    solver : str
+        Linear solver that ran.
     """
 
     times: np.ndarray
@@ -67,9 +77,12 @@ class IndentationResult:
     n_unknowns: int
     n_steps: int
     iterations: np.ndarray
-    success: bool = True
-    message: str = "converged"
+    success: bool = False
+    message: str = ""
     timings: dict = field(default_factory=dict)
+    linear_residual: float = float("nan")
+    residual: float = float("nan")
+    solver: str = ""
 
 
 def time_grid(times, creep_times, steps_per_decade):
@@ -176,6 +189,7 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
 
     grid = time_grid(t_out, material.creep_times, spd)
     out = {k: [] for k in ("a", "d", "p", "it")}
+    worst = 0.0
     U = stepper.unit_response(F)  # glassy response to unit ring forces
     w_unit = -U[top.ydofs]
     t_prev, active, pres, snaps = 0.0, rc <= a_inf, None, []
@@ -188,6 +202,7 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
             raise ConvergenceError("the contact reached the edge of the candidate band; increase contact_band")
         u_now = U @ sol.lam / e + u_hist
         stepper.commit(u_now)
+        worst = max(worst, sol.residual)
         active, t_prev = sol.active, t
         pres = _nodal_pressure(rc, sol.lam, top.weights[cand])
         if np.any(np.isclose(t, t_out, rtol=1e-12, atol=0)):
@@ -210,4 +225,16 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
         times=t_out, contact_radius=np.array(out["a"]), approach=np.array(out["d"]),
         peak_pressure=np.array(out["p"]), r=rc, pressure=pres, element_size=hs.element_size,
         domain_size=L, n_elements=hs.n_elements, n_unknowns=stepper.n_unknowns, n_steps=grid.size,
-        iterations=np.array(out["it"]), timings={"total": time.perf_counter() - t_start})
+        iterations=np.array(out["it"]), timings={"total": time.perf_counter() - t_start},
+        success=stepper.residual <= RESIDUAL_LIMIT and worst <= 1e-9,
+        message=_message(stepper.residual, worst), linear_residual=float(stepper.residual), residual=worst,
+        solver=stepper.factor.name)
+
+
+def _message(linear, complementarity):
+    problems = []
+    if not linear <= RESIDUAL_LIMIT:
+        problems.append(f"linear solve residual {linear:.2e} > {RESIDUAL_LIMIT:.0e}")
+    if not complementarity <= 1e-9:
+        problems.append(f"complementarity residual {complementarity:.2e} > 1e-9")
+    return "; ".join(problems) if problems else "converged"

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["graded_axis", "HalfSpaceMesh", "half_space_mesh"]
+__all__ = ["graded_axis", "HalfSpaceMesh", "half_space_mesh", "half_space_boundaries"]
 
 
 def _grow(start, stop, h, ratio):
@@ -46,6 +46,26 @@ def graded_axis(core_lo, core_hi, h, lo, hi, ratio):
     left = _grow(core_lo, lo, hc, ratio)[::-1] if lo < core_lo else []
     right = _grow(core_hi, hi, hc, ratio) if hi > core_hi else []
     return np.concatenate([np.array(left), core, np.array(right)])
+
+
+def half_space_boundaries(x, y):
+    """``MeshQuad.init_tensor(x, y)`` with boundaries ``left``, ``right``, ``bottom``, ``top``
+    (the top at ``y = 0``)."""
+    from skfem import MeshQuad
+
+    mesh = MeshQuad.init_tensor(x, y)
+    x0, x1, y0 = x[0], x[-1], y[0]
+    tol = 1e-9 * float(np.min(np.diff(x)).clip(max=np.min(np.diff(y))))
+
+    def near(a, b):
+        return np.abs(a - b) <= tol + 1e-12 * abs(b)
+
+    return mesh.with_boundaries({
+        "left": lambda p: near(p[0], x0),
+        "right": lambda p: near(p[0], x1),
+        "bottom": lambda p: near(p[1], y0),
+        "top": lambda p: near(p[1], 0.0),
+    })
 
 
 @dataclass(frozen=True)
@@ -96,22 +116,9 @@ def half_space_mesh(core, h, *, x_range, depth, core_depth, ratio=1.2):
     ratio : float
         Geometric growth factor outside the core.
     """
-    from skfem import MeshQuad
-
     x = graded_axis(core[0], core[1], h, x_range[0], x_range[1], ratio)
     y = graded_axis(-core_depth, 0.0, h, -depth, 0.0, ratio)
-    mesh = MeshQuad.init_tensor(x, y)
-    x0, x1, y0 = x[0], x[-1], y[0]
-
-    def near(a, b):
-        return np.abs(a - b) <= 1e-9 * h + 1e-12 * abs(b)
-
-    mesh = mesh.with_boundaries({
-        "left": lambda p: near(p[0], x0),
-        "right": lambda p: near(p[0], x1),
-        "bottom": lambda p: near(p[1], y0),
-        "top": lambda p: near(p[1], 0.0),
-    })
+    mesh = half_space_boundaries(x, y)
     hc = (core[1] - core[0]) / max(1, int(math.ceil((core[1] - core[0]) / h - 1e-9)))
-    return HalfSpaceMesh(mesh, x, y, float(hc), (float(x0), float(x1)), float(-y0))
+    return HalfSpaceMesh(mesh, x, y, float(hc), (float(x[0]), float(x[-1])), float(-y[0]))
 

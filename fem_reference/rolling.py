@@ -12,8 +12,8 @@ dissipated; the dissipated power per unit length is ``mu P V`` (W/m).
 from __future__ import annotations
 
 import logging
+import resource
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -22,87 +22,16 @@ from bem.errors import ConvergenceError, InputError
 from bem.material import Material
 
 from .contact import solve_load_control
+from .graded import fold_terms, graded_half_space, initial_edges
 from .kinematics import quadrature_operators
+from .linsolve import RESIDUAL_LIMIT
 from .mesh import half_space_mesh
+from .rolling_result import RollingResult
 from .steady import steady_operator, stress_and_dissipation
 from .surface import contact_edges, top_surface
 
 __all__ = ["RollingResult", "rolling_cylinder", "domain_size"]
 log = logging.getLogger(__name__)
-
-
-@dataclass(frozen=True)
-class RollingResult:
-    """Result of :func:`rolling_cylinder` (SI units; lengths in m, per unit length in z).
-
-    Attributes
-    ----------
-    x : ndarray
-        Top-surface node coordinates in the candidate contact band (m).
-    pressure : ndarray
-        Contact pressure at ``x`` (Pa): nodal force over ``int phi_i ds``.
-    displacement : ndarray
-        Depression (vertical displacement into the solid) at ``x`` (m).
-    forces : ndarray
-        Nodal contact forces at ``x`` (N/m); they sum to ``load``.
-    leading_edge, trailing_edge : float
-        Contact edges (m), leading at ``+x``.
-    friction : float
-        ``mu = x_bar / R`` from the moment of the nodal forces (SPEC eq. 6).
-    friction_dissipation : float
-        Viscous dissipation integrated over the block, over ``P V`` (0 at ``V = 0``). The
-        two forms converge together; against Hunter's exact solution at 3 elements per
-        glassy half-width the moment form is the better one at low speed (0.6 % vs
-        1.8 % at ``V lambda = 0.3 a0``) and the dissipation form at high speed (0.05 %
-        vs 4.6 % at ``V lambda = 100 a0``, where the pressure centroid moves by a
-        hundredth of a node spacing).
-    dissipated_power : float
-        Viscous dissipation integrated over the block (W/m), from the internal variables;
-        it matches ``friction * load * speed`` (the moment form) to the discretisation error.
-    peak_pressure, load, speed, radius, approach : float
-        Pa, N/m, m/s, m, m (the approach depends on the truncation depth in 2-D).
-    element_size, domain_width, domain_depth, grading : float
-        Core element size ``h``, half-width ``L`` and depth ``H`` of the block (m), and
-        the element growth ratio outside the core.
-    n_elements, n_unknowns, iterations : int
-    residual : float
-        Complementarity residual of the active-set solve.
-    material : bem.Material
-        The material actually used (after folding inactive Prony terms).
-    timings : dict
-        Wall times (s) of ``assemble_factor``, ``flexibility``, ``contact``, ``fields``.
-    fields : dict
-        Quadrature-point fields (only with ``keep_fields=True``): ``points``, ``strain``,
-        ``stress``, ``pressure``, ``alpha`` (list), ``dissipation``, ``weights``, and ``u``, ``mesh``.
-    """
-
-    x: np.ndarray
-    pressure: np.ndarray
-    displacement: np.ndarray
-    forces: np.ndarray
-    leading_edge: float
-    trailing_edge: float
-    friction: float
-    friction_dissipation: float
-    dissipated_power: float
-    peak_pressure: float
-    load: float
-    speed: float
-    radius: float
-    approach: float
-    element_size: float
-    domain_width: float
-    domain_depth: float
-    grading: float
-    n_elements: int
-    n_unknowns: int
-    iterations: int
-    residual: float
-    material: object = None
-    success: bool = True
-    message: str = "converged"
-    timings: dict = field(default_factory=dict)
-    fields: dict = field(default_factory=dict, repr=False)
 
 
 def _hertz_half_width(E, nu, radius, load):
@@ -122,57 +51,56 @@ def domain_size(material, radius, load, speed, *, contact_factor=40.0, retardati
     return max(contact_factor * a0, retardation_factor * ell_r)
 
 
-def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_band=1.5,
-                     domain=None, grading=1.5, fold=1e-4, solver="auto", maxiter=100,
-                     keep_fields=False, vtk=None):
-    """Steady rolling of a rigid cylinder on a viscoelastic half-space (plane strain FEM).
+def _peak_memory_mib():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
-    Parameters
-    ----------
-    material : bem.Material
-        Prony series (one Poisson ratio for all terms; ``nu = 0.5`` is allowed).
-    radius : float
-        Cylinder radius ``R`` (m).
-    load : float
-        Normal force per unit length ``P`` (N/m).
-    speed : float
-        Rolling speed ``V`` (m/s), ``>= 0``.
-    resolution : int
-        Core elements (9-node) per glassy Hertz half-width ``a_inf``: ``h = a_inf /
-        resolution``. Node spacing is ``h / 2``.
-    contact_band : float
-        Half-width of the candidate contact band and of the uniform core, in relaxed
-        Hertz half-widths ``a_0``.
-    domain : float, optional
-        Block half-width = depth (m); default :func:`domain_size`.
-    grading : float
-        Element growth ratio outside the core, in (1, 2]; 1.2 and 2 give the same
-        friction to 0.1 % (the far field is smooth), 2 with half the unknowns.
-    fold : float
-        Prony terms with ``V tau_k < fold * h`` (relaxed on every element) are dropped and
-        those with ``V tau_k > a_0 / fold`` (glassy over the contact) are added to the
-        relaxed modulus (:meth:`bem.Material.folded`), before the domain is sized; 0
-        keeps every term. The terms used are reported in ``RollingResult.material``.
-    solver : {"auto", "splu", "pardiso"}
-    maxiter : int
-        Active-set iteration limit.
-    keep_fields : bool
-        Keep quadrature-point fields in ``result.fields``.
-    vtk : str or path, optional
-        Write the fields to this ``.vtm`` (block and contact interface) or ``.vtu`` (block)
-        file, with the metadata (:mod:`fem_reference.vtk`).
 
-    Returns
-    -------
-    RollingResult
+class _BandEdge(Exception):
+    """The contact reached an end of the candidate band."""
 
-    Raises
-    ------
-    bem.errors.InputError
-        Bad parameter.
-    bem.errors.ConvergenceError
-        The active set does not settle, or the contact reaches the edge of the band.
-    """
+
+def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, active_width):
+    """Factor, condense onto the candidate nodes, solve the contact and the fields."""
+    t0 = time.perf_counter()
+    ops = quadrature_operators(hs.mesh, "plane")
+    cmask = bool(condense)
+    op = steady_operator(ops, material, V, solver=solver, condense=cmask)
+    t1 = time.perf_counter()
+
+    top = top_surface(ops.basis)
+    cand = (top.x >= band[0] - 1e-12 * abs(band[0])) & (top.x <= band[1] + 1e-12 * abs(band[1]))
+    ydofs = top.ydofs[cand]
+    F = np.zeros((ops.basis.N, ydofs.size))
+    F[ydofs, np.arange(ydofs.size)] = -1.0  # unit downward force on the body
+    u_unit, _, _ = op.solve(F)  # one call, every candidate node a right-hand side
+    w_top = -u_unit[top.ydofs]  # depression at every top node per unit force
+    del u_unit
+    t2 = time.perf_counter()
+
+    xc = top.x[cand]
+    hc = -xc**2 / (2 * R)
+    centre = 0.5 * (band[0] + band[1])
+    sol = solve_load_control(w_top[cand], hc, P, active=np.abs(xc - centre) <= active_width, maxiter=maxiter)
+    act = np.flatnonzero(sol.active)
+    if act[0] == 0 or act[-1] == xc.size - 1:
+        raise _BandEdge()
+    gap_top = w_top @ sol.lam + top.x**2 / (2 * R) - sol.d
+    if np.any(gap_top[~cand] < -1e-9 * abs(sol.d)):
+        raise _BandEdge()
+    t3 = time.perf_counter()
+
+    u, p, alpha = op.solve(F @ sol.lam)
+    eps, sigma, diss = stress_and_dissipation(ops, material, u, p, alpha)
+    t4 = time.perf_counter()
+    pres = sol.lam / top.weights[cand]
+    lead, trail = contact_edges(xc, pres, sol.active)
+    timings = dict(op.timings, assemble_factor=t1 - t0, flexibility=t2 - t1, contact=t3 - t2, fields=t4 - t3)
+    timings["assemble"] = t1 - t0 - op.timings["factor"]
+    return dict(ops=ops, op=op, sol=sol, xc=xc, pres=pres, w=w_top[cand], edges=(trail, lead), u=u, p=p,
+                alpha=alpha, eps=eps, sigma=sigma, diss=diss, timings=timings)
+
+
+def _check_inputs(material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh):
     if not isinstance(material, Material):
         raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
     R = check_positive("radius", radius)
@@ -189,65 +117,185 @@ def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_ban
     fold = check_positive("fold", fold, allow_zero=True)
     if fold >= 1:
         raise InputError(f"fold must be in [0, 1), got {fold!r}")
+    if mesh not in ("uniform", "graded"):
+        raise InputError(f"mesh must be 'uniform' or 'graded', got {mesh!r}")
+    return R, P, V, n_res, band, maxiter, ratio, fold
+
+
+def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_band=1.5,
+                     domain=None, grading=1.5, fold=1e-4, solver="auto", maxiter=100,
+                     keep_fields=False, vtk=None, mesh="uniform", condense="auto", layer_floor=0.1,
+                     passes=8):
+    """Steady rolling of a rigid cylinder on a viscoelastic half-space (plane strain FEM).
+
+    Parameters
+    ----------
+    material : bem.Material
+        Prony series (one Poisson ratio for all terms; ``nu = 0.5`` is allowed).
+    radius : float
+        Cylinder radius ``R`` (m).
+    load : float
+        Normal force per unit length ``P`` (N/m).
+    speed : float
+        Rolling speed ``V`` (m/s), ``>= 0``.
+    resolution : int
+        ``mesh="uniform"``: core elements (9-node) per glassy Hertz half-width
+        ``a_inf``, ``h = a_inf / resolution``. ``mesh="graded"``: elements per contact
+        half-width at the contact edges and at the surface. Node spacing is ``h / 2``.
+    contact_band : float
+        Uniform mesh: half-width of the candidate contact band and of the uniform core,
+        in relaxed Hertz half-widths ``a_0``.
+    domain : float, optional
+        Block half-width = depth (m); default :func:`domain_size`.
+    grading : float
+        Element growth ratio, in (1, 2]: outside the core (uniform mesh; 1.2 and 2 give
+        the same friction to 0.1 %, the far field being smooth) or everywhere (graded).
+    fold : float
+        Tolerance for folding inactive Prony terms; 0 keeps every term. Uniform mesh:
+        terms with ``V tau_k < fold * h`` are dropped and those with ``V tau_k > a_0 /
+        fold`` added to the relaxed modulus (:meth:`bem.Material.folded`). Graded mesh:
+        the bounds of :mod:`fem_reference.graded` (the arm's stress relative to the
+        relaxed one at the smallest element and over the block). The terms used are in
+        ``RollingResult.material`` and ``RollingResult.terms``.
+    solver : {"auto", "splu", "pardiso"}
+    maxiter : int
+        Active-set iteration limit.
+    keep_fields : bool
+        Keep quadrature-point fields in ``result.fields``.
+    vtk : str or path, optional
+        Write the fields to this ``.vtm`` (block and contact interface) or ``.vtu`` (block)
+        file, with the metadata (:mod:`fem_reference.vtk`).
+    mesh : {"uniform", "graded"}
+        ``"graded"`` grades the mesh geometrically toward the contact edges and the
+        leading-edge layers (:mod:`fem_reference.graded`) and remeshes until the edges
+        settle (at most ``passes`` meshes); use it for real rubbers (large modulus
+        ratios, many terms).
+    condense : {"auto", True, False}
+        Eliminate the viscous strains (:mod:`fem_reference.condense`) instead of keeping
+        them as unknowns; ``"auto"``: on the graded mesh (where the fine, streamwise
+        elongated elements make SuperLU fill the monolithic system: 238M factor entries
+        for 152k unknowns, against 30M for the 14k condensed ones, 8-term rubber), not on
+        the uniform one.
+    layer_floor : float
+        Graded mesh: smallest leading-edge element, in edge elements.
+    passes : int
+        Graded mesh: most meshes solved while the edges settle.
+
+    Returns
+    -------
+    RollingResult
+
+    Raises
+    ------
+    bem.errors.InputError
+        Bad parameter.
+    bem.errors.ConvergenceError
+        The active set does not settle, or the contact reaches the edge of the band.
+    """
+    R, P, V, n_res, band, maxiter, ratio, fold = _check_inputs(
+        material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh)
+    if condense not in ("auto", True, False):
+        raise InputError(f"condense must be 'auto', True or False, got {condense!r}")
+    layer_floor = check_positive("layer_floor", layer_floor)
+    passes = check_int("passes", passes, 1, 50)
+    t_start = time.perf_counter()
+    kw = dict(solver=solver, maxiter=maxiter, condense=(mesh == "graded") if condense == "auto" else condense)
+    if mesh == "uniform":
+        material, terms, hs, out, npass = _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw)
+    else:
+        material, terms, hs, out, npass = _run_graded(material, R, P, V, n_res, ratio, fold, domain,
+                                                      layer_floor, passes, kw)
+    return _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, vtk, t_start)
+
+
+def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
     nu = material.nu
     a_inf = _hertz_half_width(material.E_inf, nu, R, P)
     h = a_inf / n_res
+    taus = material.relaxation_times
     if fold > 0 and not material.is_elastic:
         a_relaxed = _hertz_half_width(material.E0, nu, R, P)
         material = material.folded(V / a_relaxed, V / h, tol=fold)
+    dropped = [float(t) for t in taus if t not in material.relaxation_times]
+    terms = {"kept": material.relaxation_times.tolist(), "relaxed": [t for t in dropped if V * t < fold * h],
+             "glassy": [t for t in dropped if not V * t < fold * h]}
     a0 = _hertz_half_width(material.E0, nu, R, P)
     L = domain_size(material, R, P, V) if domain is None else check_positive("domain", domain)
     xb = band * a0
     if L < 4 * xb:
         raise InputError(f"domain must be >= 4 * contact_band * a_0 = {4 * xb!r} m, got {L!r}")
-
-    t0 = time.perf_counter()
     hs = half_space_mesh((-xb, xb), h, x_range=(-L, L), depth=L, core_depth=xb, ratio=ratio)
-    ops = quadrature_operators(hs.mesh, "plane")
-    op = steady_operator(ops, material, V, solver=solver)
-    t1 = time.perf_counter()
+    try:
+        out = _solve_mesh(hs, material, R, P, V, (-xb, xb), active_width=a_inf, **kw)
+    except _BandEdge:
+        raise ConvergenceError("the contact reached the edge of the candidate band, or the solid penetrates "
+                               "the cylinder outside it; increase contact_band") from None
+    return material, terms, hs, out, 1
 
-    top = top_surface(ops.basis)
-    cand = np.abs(top.x) <= xb * (1 + 1e-12)
-    ydofs = top.ydofs[cand]
-    F = np.zeros((ops.basis.N, ydofs.size))
-    F[ydofs, np.arange(ydofs.size)] = -1.0  # unit downward force on the body
-    u_unit, _, _ = op.solve(F)
-    w_top = -u_unit[top.ydofs]  # depression at every top node per unit force
-    t2 = time.perf_counter()
 
-    xc = top.x[cand]
-    hc = -xc**2 / (2 * R)
-    sol = solve_load_control(w_top[cand], hc, P, active=np.abs(xc) <= a_inf, maxiter=maxiter)
-    act = np.flatnonzero(sol.active)
-    if act[0] == 0 or act[-1] == xc.size - 1:
-        raise ConvergenceError("the contact reached the edge of the candidate band; increase contact_band")
-    gap_top = w_top @ sol.lam + top.x**2 / (2 * R) - sol.d
-    if np.any(gap_top[~cand] < -1e-9 * abs(sol.d)):
-        raise ConvergenceError("the solid penetrates the cylinder outside the candidate band; "
-                               "increase contact_band")
-    t3 = time.perf_counter()
+def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, passes, kw):
+    trail, lead = initial_edges(material, R, P, V)
+    L0 = domain_size(material, R, P, V) if domain is None else check_positive("domain", domain)
+    a_c = 0.5 * (lead - trail)
+    material, terms = fold_terms(material, V, layer_floor * a_c / n_res, L0, fold)
+    L = domain_size(material, R, P, V) if domain is None else L0
+    widen = 0.5
+    out = hs = None
+    for npass in range(1, passes + 1):
+        a_c = 0.5 * (lead - trail)
+        h_edge = a_c / n_res
+        if L < 8 * a_c:
+            raise InputError(f"domain must be >= 8 contact half-widths = {8 * a_c!r} m, got {L!r}")
+        hs = graded_half_space((trail, lead), material, V, resolution=n_res, length=L, ratio=ratio,
+                               layer_floor=layer_floor)
+        band = (trail - widen * a_c - h_edge, lead + widen * a_c + h_edge)
+        try:
+            out = _solve_mesh(hs, material, R, P, V, band, active_width=0.8 * a_c, **kw)
+        except _BandEdge:
+            widen *= 2
+            trail, lead = trail - widen * a_c, lead + widen * a_c
+            continue
+        new_trail, new_lead = out["edges"]
+        log.info("graded pass %d: edges [%.6g, %.6g] -> [%.6g, %.6g], %d unknowns, %s", npass, trail, lead,
+                 new_trail, new_lead, out["op"].n_unknowns,
+                 ", ".join(f"{k} {v:.2f} s" for k, v in out["timings"].items()))
+        moved = max(abs(new_trail - trail), abs(new_lead - lead))
+        trail, lead = new_trail, new_lead
+        if moved <= 0.25 * h_edge:
+            break
+    if out is None:
+        raise ConvergenceError(f"the contact kept reaching the edge of the candidate band in {passes} meshes")
+    return material, terms, hs, out, npass
 
-    forces = F @ sol.lam  # downward nodal forces on the body
-    u, p, alpha = op.solve(forces)
-    eps, sigma, diss = stress_and_dissipation(ops, material, u, p, alpha)
-    power_fields = float(ops.weights @ diss)
-    t4 = time.perf_counter()
 
-    pres = sol.lam / top.weights[cand]
-    lead, trail = contact_edges(xc, pres, sol.active)
+def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, vtk, t_start):
+    op, sol, ops = out["op"], out["sol"], out["ops"]
+    xc, pres = out["xc"], out["pres"]
+    trail, lead = out["edges"]
     mu = float(sol.lam @ xc / (R * P))
+    power_fields = float(ops.weights @ out["diss"])
+    lin = float(op.residual)
+    problems = []
+    if not lin <= RESIDUAL_LIMIT:
+        problems.append(f"linear solve residual {lin:.2e} > {RESIDUAL_LIMIT:.0e}")
+    if not sol.residual <= 1e-9:
+        problems.append(f"complementarity residual {sol.residual:.2e} > 1e-9")
+    timings = dict(out["timings"], total=time.perf_counter() - t_start)
+    keep = keep_fields or vtk is not None
+    fields = dict(mesh=hs.mesh, basis=ops.basis, ops=ops, u=out["u"], points=ops.points, weights=ops.weights,
+                  strain=out["eps"], stress=out["sigma"], alpha=out["alpha"], pressure=out["p"],
+                  taus=np.array(material.relaxation_times), dissipation=out["diss"]) if keep else {}
     res = RollingResult(
-        x=xc, pressure=pres, displacement=w_top[cand] @ sol.lam, forces=sol.lam,
+        x=xc, pressure=pres, displacement=out["w"] @ sol.lam, forces=sol.lam,
         leading_edge=lead, trailing_edge=trail,
         friction=mu, friction_dissipation=power_fields / (P * V) if V > 0 else 0.0,
         dissipated_power=power_fields, peak_pressure=float(pres.max()), load=P, speed=V, radius=R,
-        approach=sol.d, element_size=hs.element_size, domain_width=L, domain_depth=hs.depth, grading=ratio,
-        n_elements=hs.n_elements, n_unknowns=op.n_unknowns, iterations=sol.iterations,
-        residual=sol.residual, material=material,
-        timings={"assemble_factor": t1 - t0, "flexibility": t2 - t1, "contact": t3 - t2, "fields": t4 - t3},
-        fields=dict(mesh=hs.mesh, basis=ops.basis, u=u, points=ops.points, weights=ops.weights,
-                    strain=eps, stress=sigma, pressure=p, alpha=alpha, dissipation=diss) if (keep_fields or vtk) else {},
+        approach=sol.d, element_size=hs.element_size, domain_width=hs.width[1], domain_depth=hs.depth,
+        grading=ratio, n_elements=hs.n_elements, n_unknowns=op.n_unknowns, iterations=sol.iterations,
+        residual=sol.residual, material=material, success=not problems,
+        message="; ".join(problems) if problems else "converged", timings=timings, fields=fields,
+        linear_residual=lin, solver=op.factor.name, mesh=mesh, passes=npass, terms=terms,
+        condensed=tuple(bool(c) for c in op.condensed), peak_memory=_peak_memory_mib(),
     )
     if vtk is not None:
         from .vtk import write_fields
@@ -255,8 +303,8 @@ def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_ban
         write_fields(vtk, res.fields, res)
         if not keep_fields:
             res = _drop_fields(res)
-    log.info("rolling V=%g: mu=%.6g, edges [%g, %g], %d unknowns, %.1f s", V, mu, trail, lead,
-             op.n_unknowns, t4 - t0)
+    log.info("rolling V=%g (%s mesh, %d passes): mu=%.6g, edges [%g, %g], %d unknowns, %.1f s, %s", V, mesh,
+             npass, mu, trail, lead, op.n_unknowns, timings["total"], res.message)
     return res
 
 

@@ -17,24 +17,32 @@ satisfy::
 
 ``K_dev = B^T W D_dev B``, ``G = B^T W m N``, ``M = N^T W N``, ``c = 3 (1 - 2 nu)``,
 ``L_k alpha = R_k eps`` the exponential streamline update of
-:mod:`fem_reference.transport`. The system is sparse and not symmetric; the internal
-variables are kept as unknowns because eliminating them fills each streamline.
+:mod:`fem_reference.transport`. The system is sparse and not symmetric. A term may
+instead be condensed: ``alpha_k = A_k eps`` with the truncated explicit memory ``A_k`` of
+:mod:`fem_reference.condense`, so that ``B`` becomes ``B_v = (I - sum_k g_k A_k) B`` in the
+first two block rows and the term has no unknowns. That trades unknowns for a band along
+the streamlines of width ``~ 30 V tau_k``: cheap where the elements are long compared
+with ``V tau_k``, and the only affordable form on strongly graded meshes, where the
+monolithic system fills under SuperLU.
 
 Boundary conditions: bottom fixed, sides on rollers (``u_x = 0``), top free except for
 the contact forces.
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
+from .condense import band_width, condensed_operator
 from .kinematics import deviatoric_matrix, inverse_bulk_modulus, mixed_blocks, trace_vector
-from .linsolve import factorize
+from .linsolve import factorize, solve_refined
 from .transport import streamline_operators
 
-__all__ = ["SteadyOperator", "steady_operator"]
+__all__ = ["SteadyOperator", "steady_operator", "condensable", "viscous_strain"]
 
 
 @dataclass
@@ -43,6 +51,8 @@ class SteadyOperator:
 
     Use :meth:`solve` with nodal forces (N/m) on the displacement DOFs; it returns the
     displacement (m), pressure (Pa) and viscous strains at the quadrature points.
+    ``residual`` is the largest relative residual ``||A x - b|| / ||b||`` of the solves
+    so far; ``condensed`` flags the terms whose viscous strains were eliminated.
     """
 
     ops: object
@@ -52,6 +62,10 @@ class SteadyOperator:
     sizes: tuple
     factor: object
     n_unknowns: int
+    matrix: object = None
+    condensed: np.ndarray = None
+    residual: float = 0.0
+    timings: dict = None
 
     def solve(self, forces):
         """Solve for nodal ``forces`` of shape ``(N_u,)`` or ``(N_u, m)`` (N/m).
@@ -70,15 +84,34 @@ class SteadyOperator:
         npr = self.sizes[1]
         rhs = np.zeros((self.n_unknowns,) + forces.shape[1:])
         rhs[: self.free.size] = forces[self.free] / E
-        x = self.factor.solve(rhs)
+        x, res = solve_refined(self.matrix, self.factor, rhs)
+        self.residual = max(self.residual, res)
         u = np.zeros(forces.shape)
         u[self.free] = x[: self.free.size]
         off = self.free.size
         p = self.ops.N_p @ x[off: off + npr] * E
         off += npr
-        alpha = [x[off + i * self.sizes[2]: off + (i + 1) * self.sizes[2]]
-                 for i in range(self.material.moduli.size)]
+        alpha = []
+        eps = None
+        for k, tau in enumerate(self.material.relaxation_times):
+            if self.condensed[k]:
+                if eps is None:
+                    eps = self.ops.B @ u
+                alpha.append(viscous_strain(self.ops, self.speed * tau, eps))
+            else:
+                alpha.append(x[off: off + self.sizes[2]])
+                off += self.sizes[2]
         return u, p, alpha
+
+
+def viscous_strain(ops, ell, eps):
+    """``alpha`` (Voigt, point-major) of one term from the strain ``eps`` (exact update)."""
+    Lk, Rk = streamline_operators(ops.row, ops.points[0], ell)
+    lu = spla.splu(sp.csc_matrix(Lk))
+    ncomp = ops.ncomp
+    e = eps.reshape((-1, ncomp) + eps.shape[1:])
+    out = np.stack([lu.solve(np.asarray(Rk @ e[:, c])) for c in range(ncomp)], axis=1)
+    return out.reshape(eps.shape)
 
 
 def _fixed_dofs(basis):
@@ -87,7 +120,13 @@ def _fixed_dofs(basis):
     return np.unique(np.concatenate([bottom, sides]))
 
 
-def steady_operator(ops, material, speed, *, solver="auto"):
+def condensable(ops, material, speed, max_band=8.0):
+    """Mask of the terms whose truncated memory couples at most ``max_band`` points on average."""
+    return np.array([speed * tau > 0 and band_width(ops.row, ops.points[0], speed * tau) <= max_band
+                     for tau in material.relaxation_times], dtype=bool)
+
+
+def steady_operator(ops, material, speed, *, solver="auto", condense=False):
     """Assemble and factor the steady operator (see module docstring).
 
     Parameters
@@ -99,27 +138,44 @@ def steady_operator(ops, material, speed, *, solver="auto"):
         Rolling speed ``V`` (m/s), ``>= 0``.
     solver : str
         See :func:`fem_reference.linsolve.factorize`.
+    condense : bool or array of bool
+        Eliminate the viscous strains of these terms (all with ``True``) through the
+        truncated operator of :mod:`fem_reference.condense`; the others stay unknowns.
     """
+    t0 = time.perf_counter()
     mb = mixed_blocks(ops, material.nu)
-    K, G, M, T, BtWd, c = mb.K, mb.G, mb.M, mb.T, mb.BtWd, mb.c
+    M, T, BtWd, c = mb.M, mb.T, mb.BtWd, mb.c
     B = ops.B
     g = material.moduli / material.E_inf
+    ntau = g.size
+    cmask = np.broadcast_to(np.asarray(condense, dtype=bool), (ntau,)).copy()
+    cmask &= speed * material.relaxation_times > 0
 
     free = np.setdiff1d(np.arange(B.shape[1]), _fixed_dofs(ops.basis))
     Bf = B[:, free]
     ncomp = ops.ncomp
     eye = sp.identity(ncomp, format="csr")
-    blocks = [[K[free][:, free], -G[free]] + [-gk * BtWd[free] for gk in g],
-              [-G[free].T, -c * M] + [gk * T for gk in g]]
-    for k, tau in enumerate(material.relaxation_times):
-        Lk, Rk = streamline_operators(ops.row, ops.points[0], speed * tau)
-        row = [-(sp.kron(Rk, eye) @ Bf), None] + [None] * g.size
-        row[2 + k] = sp.kron(Lk, eye)
+    Bv = Bf
+    if np.any(cmask):
+        S = condensed_operator(ops.row, ops.points[0], speed * material.relaxation_times[cmask], g[cmask])
+        Bv = (Bf - sp.kron(S, eye, format="csr") @ Bf).tocsr()
+    Kv = (BtWd[free] @ Bv).tocsr()
+    Gf = mb.G[free]
+    mono = np.flatnonzero(~cmask)
+    blocks = [[Kv, -Gf] + [-g[k] * BtWd[free] for k in mono],
+              [-(T @ Bv), -c * M] + [g[k] * T for k in mono]]
+    for i, k in enumerate(mono):
+        Lk, Rk = streamline_operators(ops.row, ops.points[0], speed * material.relaxation_times[k])
+        row = [-(sp.kron(Rk, eye) @ Bf), None] + [None] * mono.size
+        row[2 + i] = sp.kron(Lk, eye)
         blocks.append(row)
     A = sp.bmat(blocks, format="csc")
+    t1 = time.perf_counter()
     fac = factorize(A, solver)
+    t2 = time.perf_counter()
     return SteadyOperator(ops, material, float(speed), free, (free.size, M.shape[0], ncomp * ops.n_points),
-                          fac, A.shape[0])
+                          fac, A.shape[0], matrix=A.tocsr(), condensed=cmask,
+                          timings={"assemble": t1 - t0, "factor": t2 - t1})
 
 
 def stress_and_dissipation(ops, material, u, p, alpha):

@@ -8,7 +8,13 @@ Cases (all SI; R = 10 mm):
   (elements per glassy half-width) and domain size (in units of ``V lambda``);
 - ``solvers``: the same rolling case factorised with SuperLU and, if installed, PARDISO;
 - ``indentation``: creep under a step load (P = 1 N) against Lee & Radok, over mesh
-  resolution.
+  resolution;
+- ``rubber``: real rubbers on the graded mesh (``mesh="graded"``, SuperLU): an 8-term
+  Prony series with E_inf/E0 = 300 and a 20-term one with E_inf/E0 = 1000 (E0 = 1 MPa,
+  relaxation times 1e-5..1e-1 s, equal moduli; R = 20 mm, P = 1500 N/m) at the isolated
+  BEM's friction peak and a decade below, against the BEM on 2^14 points (friction,
+  peak pressure, edges over the contact width), with unknowns, assemble / factor /
+  flexibility / contact times, linear residual and peak memory.
 
 Each case runs in a fresh interpreter (:func:`viscobem_bench._measure.run_in_fresh_process`)
 with BLAS/MKL threads pinned to 2, so its peak resident set size is its own.
@@ -82,6 +88,77 @@ def _indentation_case(resolution, steps_per_decade):
     }
 
 
+def _rubber_material(terms, ratio):
+    from bem import Material
+
+    return Material.from_prony(E0=1e6, moduli=np.full(terms, (ratio - 1) * 1e6 / terms),
+                               times=np.logspace(-5, -1, terms), nu=0.5)
+
+
+def _rubber_bem(terms, ratio, speed, n=2**14):
+    import bem
+    from bem.surfaces import cylinder
+
+    m = _rubber_material(terms, ratio)
+    R, P = 0.02, 1500.0
+    a0 = np.sqrt(4 * P * R * (1 - m.nu**2) / (np.pi * m.E0))
+    s = cylinder(radius=R, n=n, length=2.2 * a0)
+    r = bem.solve(s, m, speed=speed, load=P, periodic=False, method="uniform")
+    act = np.flatnonzero(r.pressure > 0)
+    dx = s.x[1] - s.x[0]
+    lead, trail = s.x[act[-1]] + dx / 2, s.x[act[0]] - dx / 2
+    return {"friction": r.friction, "peak_pressure": float(r.pressure.max()), "leading_edge": lead,
+            "trailing_edge": trail, "width": lead - trail}
+
+
+def _rubber_peak_speed(terms, ratio):
+    import scipy.optimize as so
+
+    res = so.minimize_scalar(lambda lv: -_rubber_bem(terms, ratio, 10**lv, n=2**12)["friction"],
+                             bounds=(-4.5, -1.5), method="bounded", options={"xatol": 0.01})
+    return float(10**res.x)
+
+
+def _rubber_case(terms, ratio, speed, resolution):
+    from fem_reference import rolling_cylinder
+
+    ref = _rubber_bem(terms, ratio, speed)
+    t0 = time.perf_counter()
+    r = rolling_cylinder(_rubber_material(terms, ratio), radius=0.02, load=1500.0, speed=speed, mesh="graded",
+                         resolution=resolution, solver="splu")
+    wall = time.perf_counter() - t0
+    w = ref["width"]
+    return {
+        "terms": terms, "ratio": ratio, "speed": speed, "resolution": resolution, "unknowns": r.n_unknowns,
+        "elements": r.n_elements, "passes": r.passes, "kept": len(r.terms["kept"]),
+        "friction_error": r.friction / ref["friction"] - 1,
+        "dissipation_friction_error": r.friction_dissipation / ref["friction"] - 1,
+        "peak_pressure_error": r.peak_pressure / ref["peak_pressure"] - 1,
+        "leading_edge_error_over_width": (r.leading_edge - ref["leading_edge"]) / w,
+        "trailing_edge_error_over_width": (r.trailing_edge - ref["trailing_edge"]) / w,
+        "assemble_s": r.timings["assemble"], "factor_s": r.timings["factor"],
+        "flexibility_s": r.timings["flexibility"], "contact_s": r.timings["contact"],
+        "linear_residual": r.linear_residual, "success": r.success, "wall_s": wall,
+        "peak_rss_mb": _peak_rss_mb(),
+    }
+
+
+def rubber_rows(quick=True, fresh=None):
+    """The ``rubber`` rows: each material at the BEM's friction peak and a decade below."""
+    fresh = fresh or (lambda func, *args: func(*args))
+    rows = []
+    for terms, ratio in ([(8, 300.0)] if quick else [(8, 300.0), (20, 1000.0)]):
+        peak = _rubber_peak_speed(terms, ratio)
+        for speed in (peak, peak / 10):
+            rows.append(fresh(_rubber_case, terms, ratio, speed, 3 if quick else 4))
+    cols = ["terms", "ratio", "speed", "unknowns", "passes", "friction_error", "dissipation_friction_error",
+            "peak_pressure_error", "leading_edge_error_over_width", "trailing_edge_error_over_width",
+            "factor_s", "flexibility_s", "wall_s", "linear_residual", "peak_rss_mb"]
+    print("\nrubbers on the graded mesh vs the isolated BEM (SuperLU)")
+    print(_table(rows, cols))
+    return rows
+
+
 def _table(rows, cols):
     lines = ["  ".join(f"{c:>14s}" for c in cols)]
     for row in rows:
@@ -123,7 +200,8 @@ def run(quick: bool = True, out_dir=".") -> dict:
     print("\nindentation vs Lee-Radok (SLS, creep time 1 s)")
     print(_table(ind, ["resolution", "steps_per_decade", "unknowns", "steps", "max_radius_error",
                        "max_approach_error", "wall_s", "peak_rss_mb"]))
-    result = {"quick": quick, "rolling": rolling, "solvers": srows, "indentation": ind}
+    rubber = rubber_rows(quick, fresh)
+    result = {"quick": quick, "rolling": rolling, "solvers": srows, "indentation": ind, "rubber": rubber}
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     (out / "fem_benchmark.json").write_text(json.dumps(result, indent=2, default=float))

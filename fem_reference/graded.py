@@ -1,0 +1,103 @@
+"""Mesh plan for rolling on real rubbers: which Prony terms act, and where to refine.
+
+A tensor mesh of rectangles, graded geometrically (:mod:`fem_reference.grading`):
+
+- in ``x`` toward the trailing and the leading contact edges (element size
+  ``a_c / resolution`` there, ``a_c`` the contact half-width), and further toward the
+  leading edge, where material enters the contact and each Prony term ``k`` relaxes over a
+  layer of width ``ell_k = V tau_k`` behind the edge (size ``min ell_k / 2`` over the
+  kept terms, not below ``layer_floor * a_c / resolution``);
+- in depth toward the surface (size ``a_c / resolution`` at ``y = 0``).
+
+Every row of quadrature points stays a horizontal line (a streamline), so the exact
+exponential update of the viscous strains applies on any grading.
+
+Folding (a term is dropped only when it cannot matter at the mesh's scales): the stress
+of arm ``k`` is ``E_k (eps - alpha_k)``.
+
+- Relaxed side: ``eps - alpha_k ~ ell_k d(eps)/dx`` and no strain varies faster than over
+  the smallest element ``h_min``, so the arm carries at most ``(E_k / E0) ell_k / h_min``
+  of the relaxed stress ``E0 eps``; it is dropped when that is below ``tol``.
+- Glassy side: over the whole block (length ``2 L``) ``alpha_k`` moves by at most
+  ``2 L / ell_k`` of the strain, so the arm differs from a spring ``E_k`` by at most
+  ``(E_k / E0) 2 L / ell_k``; below ``tol`` it is added to the relaxed modulus.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from bem.material import Material
+
+from .grading import graded_coordinates
+
+__all__ = ["fold_terms", "initial_edges", "graded_half_space"]
+
+
+def fold_terms(material, speed, h_min, length, tol):
+    """``(material, info)``: the terms kept, and which ``tau_k`` were relaxed or glassy."""
+    tau = material.relaxation_times
+    Ek = material.moduli
+    info = {"kept": [], "relaxed": [], "glassy": []}
+    if tol <= 0 or material.is_elastic:
+        info["kept"] = [float(t) for t in tau]
+        return material, info
+    ell = speed * tau
+    w = Ek / material.E0
+    relaxed = w * ell / h_min < tol
+    with np.errstate(divide="ignore"):
+        glassy = ~relaxed & (w * 2.0 * length / ell < tol)
+    kept = ~(relaxed | glassy)
+    info = {"kept": tau[kept].tolist(), "relaxed": tau[relaxed].tolist(), "glassy": tau[glassy].tolist()}
+    folded = Material(material.E0 + Ek[glassy].sum(), Ek[kept], tau[kept], material.nu)
+    return folded, info
+
+
+def _half_width(E, nu, radius, load):
+    return float(np.sqrt(4.0 * load * radius * (1.0 - nu**2) / (np.pi * E)))
+
+
+def initial_edges(material, radius, load, speed):
+    """Hertz edges ``(-a, a)`` for the modulus ``|E(omega)|`` at ``omega = V / a`` (m)."""
+    a = _half_width(material.E0, material.nu, radius, load)
+    for _ in range(50):
+        E = abs(complex(material.complex_modulus(speed / a))) if speed > 0 else material.E0
+        a_new = _half_width(E, material.nu, radius, load)
+        if abs(a_new - a) < 1e-6 * a:
+            break
+        a = np.sqrt(a * a_new)
+    return -a, a
+
+
+def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=0.1):
+    """A :class:`~fem_reference.mesh.HalfSpaceMesh` graded toward the contact ``edges``.
+
+    Parameters
+    ----------
+    edges : (float, float)
+        Trailing and leading contact edges (m).
+    material : bem.Material
+        The terms kept (their ``V tau_k`` set the leading-edge layer).
+    speed : float
+        Rolling speed (m/s).
+    resolution : float
+        Elements per contact half-width at the edges and at the surface.
+    length : float
+        Block half-width = depth ``L`` (m).
+    ratio : float
+        Largest growth between neighbouring elements.
+    layer_floor : float
+        Smallest leading-edge element, in edge elements.
+    """
+    from .mesh import HalfSpaceMesh, half_space_boundaries
+
+    trail, lead = edges
+    a_c = 0.5 * (lead - trail)
+    h_edge = a_c / resolution
+    ell = speed * material.relaxation_times
+    ell = ell[ell > 0]
+    h_lead = h_edge if ell.size == 0 else float(np.clip(ell.min() / 2, layer_floor * h_edge, h_edge))
+    caps = [(trail, lead, h_edge)]
+    x = graded_coordinates(-length, length, [trail, lead], [h_edge, h_lead], ratio=ratio, caps=caps)
+    y = graded_coordinates(-length, 0.0, [0.0], [h_edge], ratio=ratio)
+    mesh = half_space_boundaries(x, y)
+    return HalfSpaceMesh(mesh, x, y, float(min(h_lead, h_edge)), (float(x[0]), float(x[-1])), float(-y[0]))
