@@ -31,6 +31,7 @@ material at each measured temperature still matches its data.
 The Prony fit itself is :func:`bem.prony_fit.fit_prony_series` (relative error in each
 modulus).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -76,9 +77,15 @@ class MasterCurveReport(FitReport):
 
     def as_dict(self):
         out = super().as_dict()
-        out.update(temperatures=list(self.temperatures), log_shift=list(self.log_shift),
-                   law_log_shift=list(self.law_log_shift), law_rms=self.law_rms,
-                   law={"name": type(self.law).__name__, **vars(self.law)} if self.law is not None else None)
+        out.update(
+            temperatures=list(self.temperatures),
+            log_shift=list(self.log_shift),
+            law_log_shift=list(self.law_log_shift),
+            law_rms=self.law_rms,
+            law={"name": type(self.law).__name__, **vars(self.law)}
+            if self.law is not None
+            else None,
+        )
         return out
 
 
@@ -118,8 +125,14 @@ def _mismatch(a, b, d, min_overlap):
     ia = (a.lw >= lo) & (a.lw <= hi)
     if ia.sum() + ib.sum() < 3:
         return np.inf
-    r = np.concatenate([a.p1(b.lw[ib] + d) - b.l1[ib], a.p2(b.lw[ib] + d) - b.l2[ib],
-                        a.l1[ia] - b.p1(a.lw[ia] - d), a.l2[ia] - b.p2(a.lw[ia] - d)])
+    r = np.concatenate(
+        [
+            a.p1(b.lw[ib] + d) - b.l1[ib],
+            a.p2(b.lw[ib] + d) - b.l2[ib],
+            a.l1[ia] - b.p1(a.lw[ia] - d),
+            a.l2[ia] - b.p2(a.lw[ia] - d),
+        ]
+    )
     return float(np.mean(r**2))
 
 
@@ -137,8 +150,12 @@ def pairwise_shift(a, b, min_overlap=0.3, step=0.02, around=None, window=0.5):
     if not np.isfinite(cost).any() or (around is not None and not np.isfinite(cost).all()):
         return None  # a search near an estimate must not end on the edge of the overlap
     best = grid[np.argmin(cost)]
-    res = minimize_scalar(lambda d: min(_mismatch(a, b, d, min_overlap), 1e30), bounds=(best - step, best + step),
-                          method="bounded", options={"xatol": 1e-6})
+    res = minimize_scalar(
+        lambda d: min(_mismatch(a, b, d, min_overlap), 1e30),
+        bounds=(best - step, best + step),
+        method="bounded",
+        options={"xatol": 1e-6},
+    )
     return float(res.x) if res.fun <= cost.min() else float(best)
 
 
@@ -156,22 +173,29 @@ def chain_shifts(segs, min_overlap=0.3, reach=3, max_mismatch=0.05, temps=None):
     for k in range(len(segs) - 1):
         d = pairwise_shift(segs[k], segs[k + 1], min_overlap)
         if d is None:
-            raise InputError(f"master curve: the sweeps at {temps[k]:g} K and {temps[k + 1]:g} K cannot overlap "
-                             f"by min_overlap = {min_overlap:g} of their span; measure closer temperatures or "
-                             "wider frequency sweeps")
+            raise InputError(
+                f"master curve: the sweeps at {temps[k]:g} K and {temps[k + 1]:g} K cannot overlap "
+                f"by min_overlap = {min_overlap:g} of their span; measure closer temperatures or "
+                "wider frequency sweeps"
+            )
         misfit = np.sqrt(_mismatch(segs[k], segs[k + 1], d, min_overlap))
         if misfit > max_mismatch:
-            raise InputError(f"master curve: the sweeps at {temps[k]:g} K and {temps[k + 1]:g} K do not overlay "
-                             f"(rms log10 mismatch {misfit:.3g} > max_mismatch = {max_mismatch:g}); they are "
-                             "too far apart in temperature to overlap, or the material is not "
-                             "thermorheologically simple there")
+            raise InputError(
+                f"master curve: the sweeps at {temps[k]:g} K and {temps[k + 1]:g} K do not overlay "
+                f"(rms log10 mismatch {misfit:.3g} > max_mismatch = {max_mismatch:g}); they are "
+                "too far apart in temperature to overlap, or the material is not "
+                "thermorheologically simple there"
+            )
         steps.append(d)
     chained = np.concatenate([[0.0], np.cumsum(steps)])
     rows, rhs = [], []
     for i in range(len(segs)):
         for j in range(i + 1, min(i + reach + 1, len(segs))):
-            d = steps[i] if j == i + 1 else pairwise_shift(segs[i], segs[j], min_overlap,
-                                                           around=chained[j] - chained[i])
+            d = (
+                steps[i]
+                if j == i + 1
+                else pairwise_shift(segs[i], segs[j], min_overlap, around=chained[j] - chained[i])
+            )
             if d is not None:
                 row = np.zeros(len(segs))
                 row[i], row[j] = -1.0, 1.0
@@ -184,8 +208,10 @@ def chain_shifts(segs, min_overlap=0.3, reach=3, max_mismatch=0.05, temps=None):
 
 def _anchor(temps, chained, reference_temperature):
     if not temps[0] <= reference_temperature <= temps[-1]:
-        raise InputError(f"reference_temperature must lie within the measured temperatures "
-                         f"[{temps[0]:g}, {temps[-1]:g}] K, got {reference_temperature!r}")
+        raise InputError(
+            f"reference_temperature must lie within the measured temperatures "
+            f"[{temps[0]:g}, {temps[-1]:g}] K, got {reference_temperature!r}"
+        )
     return chained - np.interp(reference_temperature, temps, chained)
 
 
@@ -195,13 +221,28 @@ def _check_inputs(frequencies, temperatures, storage, loss, hz):
     if T.shape != w.shape:
         raise InputError(f"temperatures must have one entry per frequency ({w.size}), got {T.size}")
     if np.any(e2 <= 0):
-        raise InputError("loss must be > 0 Pa everywhere for a master curve (its logarithm is shifted)")
+        raise InputError(
+            "loss must be > 0 Pa everywhere for a master curve (its logarithm is shifted)"
+        )
     return w, T, e1, e2
 
 
-def fit_master_curve(frequencies, temperatures, storage, loss, *, reference_temperature, shift="wlf",
-                     hz=False, terms_per_decade=3.0, smoothing=0.0, temperature_tolerance=0.5,
-                     min_overlap=0.3, reach=3, max_mismatch=0.05):
+def fit_master_curve(
+    frequencies,
+    temperatures,
+    storage,
+    loss,
+    *,
+    reference_temperature,
+    shift="wlf",
+    hz=False,
+    terms_per_decade=3.0,
+    smoothing=0.0,
+    temperature_tolerance=0.5,
+    min_overlap=0.3,
+    reach=3,
+    max_mismatch=0.05,
+):
     """Master curve, shift law and Prony series from multi-temperature DMA data.
 
     Parameters are those of :meth:`bem.Material.fit_master_curve`. Returns
@@ -215,16 +256,24 @@ def fit_master_curve(frequencies, temperatures, storage, loss, *, reference_temp
     min_overlap = check_range("min_overlap", min_overlap, 0.0, 1.0)
     label, temps = segments(T, tol)
     if temps.size < 3:
-        raise InputError(f"master curve needs sweeps at >= 3 temperatures (to fit a law), got {temps.size}")
+        raise InputError(
+            f"master curve needs sweeps at >= 3 temperatures (to fit a law), got {temps.size}"
+        )
     lw, l1, l2 = np.log10(w), np.log10(e1), np.log10(e2)
     segs = [_Segment(lw[label == k], l1[label == k], l2[label == k]) for k in range(temps.size)]
     log_a = _anchor(temps, chain_shifts(segs, min_overlap, reach, max_mismatch, temps), tref)
-    taus = default_times(np.concatenate([w * 10.0 ** log_a.min(), w * 10.0 ** log_a.max()]), terms_per_decade)
+    taus = default_times(
+        np.concatenate([w * 10.0 ** log_a.min(), w * 10.0 ** log_a.max()]), terms_per_decade
+    )
     law = LAWS[shift](temps, log_a, tref)
     E0, moduli, times, rep = fit_prony_series(w * 10.0 ** law(T), e1, e2, taus, smoothing=smoothing)
     law_a = law(temps)
-    report = MasterCurveReport(**{f: getattr(rep, f) for f in FitReport.__dataclass_fields__},
-                               temperatures=tuple(temps.tolist()), log_shift=tuple(log_a.tolist()),
-                               law_log_shift=tuple(np.atleast_1d(law_a).tolist()),
-                               law_rms=float(np.sqrt(np.mean((log_a - law_a) ** 2))), law=law)
+    report = MasterCurveReport(
+        **{f: getattr(rep, f) for f in FitReport.__dataclass_fields__},
+        temperatures=tuple(temps.tolist()),
+        log_shift=tuple(log_a.tolist()),
+        law_log_shift=tuple(np.atleast_1d(law_a).tolist()),
+        law_rms=float(np.sqrt(np.mean((log_a - law_a) ** 2))),
+        law=law,
+    )
     return E0, moduli, times, law, report

@@ -2,7 +2,7 @@
 
 Units are SI: moduli in Pa, compliances in 1/Pa, times in s, angular frequencies in rad/s.
 
-Conventions (SPEC §2.1), with ``s = i w``:
+Conventions (the theory page of the documentation, section 2), with ``s = i w``:
 
 - relaxation (generalised Maxwell):
   ``E(t) = E0 + sum_k E_k exp(-t/tau_k)``,
@@ -13,25 +13,23 @@ Conventions (SPEC §2.1), with ``s = i w``:
   ``J(w) = 1/E_inf + sum_k C_k / (1 + i w lambda_k)``,
   ``1/E_inf = 1/E0 - sum_k C_k``.
 
-The two are converted exactly (to round-off) by partial fractions: the retardation
-rates ``1/lambda_k`` are the roots of ``E(-sigma)``, which are real and interlace the
-relaxation rates ``1/tau_k`` (one root per interval), so each is found by a bracketed
-root search; the residues follow from the derivative of ``E``, a sum of positive terms,
-so no cancellation occurs. The converse uses the same construction on ``J``.
+The two are converted exactly (to round-off) by partial fractions
+(:mod:`bem.interconversion`).
 
 The Poisson ratio ``nu`` is the same for every term, so the half-space responds
 through the plane-strain modulus ``E(w) / (1 - nu**2)``.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from . import master_curve
 from .checks import check_array, check_positive, check_range
 from .errors import InputError
+from .interconversion import creep_to_prony, prony_to_creep
 from .prony_fit import check_dma, default_times, fit_prony_series
 
 __all__ = ["Material"]
@@ -55,62 +53,6 @@ def _check_series(name, amplitudes, unit, times):
     if np.unique(t).size != t.size:
         raise InputError("times must be distinct (merge terms with equal times)")
     return a, t
-
-
-def _interlaced_roots(func, poles, upper=None):
-    """Roots of ``func(sigma)`` between consecutive ``poles`` (ascending).
-
-    If ``upper`` is None the first root lies in ``(0, poles[0])``; otherwise the last lies in
-    ``(poles[-1], inf)``. ``func`` must change sign once in each interval.
-    """
-    poles = np.asarray(poles, dtype=float)
-    if upper is None:
-        brackets = [(0.0, poles[0])] + list(zip(poles[:-1], poles[1:]))
-    else:
-        brackets = list(zip(poles[:-1], poles[1:])) + [(poles[-1], np.inf)]
-    roots = []
-    for lo, hi in brackets:
-        if np.isinf(hi):
-            hi = 2.0 * lo
-            while func(hi) * func(lo * (1 + 1e-15) + 1e-300) > 0:
-                hi *= 2.0
-        # open interval: step off the poles by a relative round-off amount
-        a = lo * (1 + 1e-14) if lo > 0 else 0.0
-        b = hi * (1 - 1e-14)
-        roots.append(brentq(func, a, b, xtol=1e-300, rtol=8.9e-16, maxiter=500))
-    return np.array(roots)
-
-
-def _prony_to_creep(E0, moduli, taus):
-    """Relaxation series -> (C_k, lambda_k). Exact partial fractions of 1/E(s)."""
-    rates = np.sort(1.0 / taus)  # ascending relaxation rates
-
-    def e_neg(sig):  # E(s = -sig), a monotone decreasing function between poles
-        return E0 + np.sum(moduli * sig * taus / (sig * taus - 1.0))
-
-    roots = _interlaced_roots(e_neg, rates)  # retardation rates 1/lambda
-    lambdas = 1.0 / roots
-    # residue of 1/E(s) at s_k = -1/lambda_k is C_k / lambda_k = 1 / E'(s_k)
-    s = -roots[:, None]
-    dE = np.sum(moduli * taus / (1.0 + s * taus) ** 2, axis=1)
-    compliances = lambdas / dE
-    return compliances, lambdas
-
-
-def _creep_to_prony(E0, compliances, lambdas):
-    """Creep series -> (E_k, tau_k). Exact partial fractions of 1/J(s)."""
-    j_inf = 1.0 / E0 - np.sum(compliances)
-    rates = np.sort(1.0 / lambdas)
-
-    def j_neg(sig):  # J(s = -sig)
-        return j_inf + np.sum(compliances / (1.0 - sig * lambdas))
-
-    roots = _interlaced_roots(j_neg, rates, upper=True)  # relaxation rates 1/tau
-    taus = 1.0 / roots
-    s = -roots[:, None]
-    dJ = np.sum(compliances * lambdas / (1.0 + s * lambdas) ** 2, axis=1)  # = -J'(s)
-    moduli = taus / dJ
-    return moduli, taus
 
 
 @dataclass(frozen=True)
@@ -150,12 +92,19 @@ class Material:
         nu = check_range("nu", self.nu, 0.0, 0.5)
         Ek, tk = _sorted_terms(*_check_series("moduli", self.moduli, "Pa", self.relaxation_times))
         if Ek.size:
-            Ck, lk = _prony_to_creep(E0, Ek, tk)
+            Ck, lk = prony_to_creep(E0, Ek, tk)
             Ck, lk = _sorted_terms(Ck, lk)
         else:
             Ck, lk = np.zeros(0), np.zeros(0)
-        for name, value in [("E0", E0), ("nu", nu), ("moduli", Ek), ("relaxation_times", tk),
-                            ("compliances", Ck), ("creep_times", lk), ("E_inf", float(E0 + Ek.sum()))]:
+        for name, value in [
+            ("E0", E0),
+            ("nu", nu),
+            ("moduli", Ek),
+            ("relaxation_times", tk),
+            ("compliances", Ck),
+            ("creep_times", lk),
+            ("E_inf", float(E0 + Ek.sum())),
+        ]:
             if isinstance(value, np.ndarray):
                 value.setflags(write=False)
             object.__setattr__(self, name, value)
@@ -176,7 +125,9 @@ class Material:
         E0 = check_positive("E0", E0)
         E_inf = check_positive("E_inf", E_inf)
         if not E_inf > E0:
-            raise InputError(f"E_inf must be > E0 = {E0!r} Pa (glassy stiffer than relaxed), got {E_inf!r}")
+            raise InputError(
+                f"E_inf must be > E0 = {E0!r} Pa (glassy stiffer than relaxed), got {E_inf!r}"
+            )
         if (relaxation_time is None) == (creep_time is None):
             raise InputError("give exactly one of relaxation_time or creep_time (s)")
         if relaxation_time is not None:
@@ -193,7 +144,9 @@ class Material:
         ``moduli[k]`` stays paired with ``times[k]``, and two materials with the same terms in
         different orders are equal.
         """
-        return cls(E0, check_array("moduli", moduli, ndim=1), check_array("times", times, ndim=1), nu)
+        return cls(
+            E0, check_array("moduli", moduli, ndim=1), check_array("times", times, ndim=1), nu
+        )
 
     @classmethod
     def from_creep(cls, *, E0, compliances, times, nu=0.5):
@@ -201,16 +154,30 @@ class Material:
         E0 = check_positive("E0", E0)
         Ck, lk = _check_series("compliances", compliances, "1/Pa", times)
         if not Ck.size:
-            raise InputError("compliances must have at least 1 entry (use Material.elastic for none)")
+            raise InputError(
+                "compliances must have at least 1 entry (use Material.elastic for none)"
+            )
         if not Ck.sum() < 1.0 / E0:
-            raise InputError(f"compliances must sum to < 1/E0 = {1 / E0!r} 1/Pa (so that E_inf is finite), "
-                             f"got {Ck.sum()!r}")
-        Ek, tk = _creep_to_prony(E0, Ck, lk)
+            raise InputError(
+                f"compliances must sum to < 1/E0 = {1 / E0!r} 1/Pa (so that E_inf is finite), "
+                f"got {Ck.sum()!r}"
+            )
+        Ek, tk = creep_to_prony(E0, Ck, lk)
         return cls(E0, Ek, tk, nu)
 
     @classmethod
-    def fit_prony(cls, frequencies, storage, loss, *, times=None, terms_per_decade=3.0,
-                  hz=False, nu=0.5, smoothing=0.0):
+    def fit_prony(
+        cls,
+        frequencies,
+        storage,
+        loss,
+        *,
+        times=None,
+        terms_per_decade=3.0,
+        hz=False,
+        nu=0.5,
+        smoothing=0.0,
+    ):
         """Fit a non-negative Prony series to DMA data (a master curve), in relative error.
 
         Parameters
@@ -247,13 +214,29 @@ class Material:
             taus = default_times(w, terms_per_decade)
         else:
             taus = check_array("times", times, ndim=1, positive=True)
-        E0, moduli, taus, report = fit_prony_series(w, e1, e2, taus, smoothing=smoothing, refine=times is None)
+        E0, moduli, taus, report = fit_prony_series(
+            w, e1, e2, taus, smoothing=smoothing, refine=times is None
+        )
         return cls(E0, moduli, taus, nu, fit_report=report)
 
     @classmethod
-    def fit_master_curve(cls, frequencies, temperatures, storage, loss, *, reference_temperature,
-                         shift="wlf", hz=False, terms_per_decade=3.0, smoothing=0.0, nu=0.5,
-                         temperature_tolerance=0.5, min_overlap=0.3, max_mismatch=0.05):
+    def fit_master_curve(
+        cls,
+        frequencies,
+        temperatures,
+        storage,
+        loss,
+        *,
+        reference_temperature,
+        shift="wlf",
+        hz=False,
+        terms_per_decade=3.0,
+        smoothing=0.0,
+        nu=0.5,
+        temperature_tolerance=0.5,
+        min_overlap=0.3,
+        max_mismatch=0.05,
+    ):
         """Master curve and shift law from DMA sweeps at several temperatures.
 
         Parameters
@@ -291,10 +274,19 @@ class Material:
         :mod:`bem.master_curve`.
         """
         E0, moduli, taus, law, report = master_curve.fit_master_curve(
-            frequencies, temperatures, storage, loss, reference_temperature=reference_temperature,
-            shift=shift, hz=hz, terms_per_decade=terms_per_decade, smoothing=smoothing,
-            temperature_tolerance=temperature_tolerance, min_overlap=min_overlap,
-            max_mismatch=max_mismatch)
+            frequencies,
+            temperatures,
+            storage,
+            loss,
+            reference_temperature=reference_temperature,
+            shift=shift,
+            hz=hz,
+            terms_per_decade=terms_per_decade,
+            smoothing=smoothing,
+            temperature_tolerance=temperature_tolerance,
+            min_overlap=min_overlap,
+            max_mismatch=max_mismatch,
+        )
         return cls(E0, moduli, taus, nu, fit_report=report), law
 
     def at_temperature(self, T, shift):
@@ -306,12 +298,16 @@ class Material:
         the moduli and compliances are unchanged and the times scale by one rounding each.
         """
         if not callable(shift):
-            raise InputError(f"shift must be a callable giving log10 a_T(T) (e.g. bem.temperature.WLF), "
-                             f"got {shift!r}")
+            raise InputError(
+                f"shift must be a callable giving log10 a_T(T) (e.g. bem.temperature.WLF), "
+                f"got {shift!r}"
+            )
         T = check_positive("T (K, absolute)", T)
         factor = 10.0 ** float(shift(T))
         if not (np.isfinite(factor) and factor > 0):
-            raise InputError(f"shift factor a_T at T = {T!r} K must be finite and > 0, got {factor!r}")
+            raise InputError(
+                f"shift factor a_T at T = {T!r} K must be finite and > 0, got {factor!r}"
+            )
         out = Material(self.E0, self.moduli, self.relaxation_times * factor, self.nu)
         creep = self.creep_times * factor
         creep.setflags(write=False)
@@ -340,17 +336,22 @@ class Material:
         """``J*(w) = 1 / E*(w)`` (1/Pa) from the creep series."""
         w = np.asarray(w, dtype=float)
         return 1.0 / self.E_inf + np.sum(
-            self.compliances / (1.0 + 1j * w[..., None] * self.creep_times), axis=-1)
+            self.compliances / (1.0 + 1j * w[..., None] * self.creep_times), axis=-1
+        )
 
     def creep_compliance(self, t):
         """``J(t)`` (1/Pa) for ``t >= 0`` (s): strain under a unit step stress."""
         t = np.asarray(t, dtype=float)
-        return 1.0 / self.E0 - np.sum(self.compliances * np.exp(-t[..., None] / self.creep_times), axis=-1)
+        return 1.0 / self.E0 - np.sum(
+            self.compliances * np.exp(-t[..., None] / self.creep_times), axis=-1
+        )
 
     def relaxation_modulus(self, t):
         """``E(t)`` (Pa) for ``t >= 0`` (s): stress under a unit step strain."""
         t = np.asarray(t, dtype=float)
-        return self.E0 + np.sum(self.moduli * np.exp(-t[..., None] / self.relaxation_times), axis=-1)
+        return self.E0 + np.sum(
+            self.moduli * np.exp(-t[..., None] / self.relaxation_times), axis=-1
+        )
 
     def folded(self, w_min, w_max, *, tol=1e-6):
         """Copy with the terms inactive over ``[w_min, w_max]`` (rad/s) folded in.
@@ -366,14 +367,21 @@ class Material:
         relaxed = w_max * self.relaxation_times < tol
         glassy = w_min * self.relaxation_times > 1.0 / tol
         active = ~(relaxed | glassy)
-        return Material(self.E0 + self.moduli[glassy].sum(), self.moduli[active],
-                        self.relaxation_times[active], self.nu)
+        return Material(
+            self.E0 + self.moduli[glassy].sum(),
+            self.moduli[active],
+            self.relaxation_times[active],
+            self.nu,
+        )
 
     def __eq__(self, other):
         if not isinstance(other, Material):
             return NotImplemented
-        return (self.E0 == other.E0 and self.nu == other.nu
-                and np.array_equal(self.moduli, other.moduli)
-                and np.array_equal(self.relaxation_times, other.relaxation_times))
+        return (
+            self.E0 == other.E0
+            and self.nu == other.nu
+            and np.array_equal(self.moduli, other.moduli)
+            and np.array_equal(self.relaxation_times, other.relaxation_times)
+        )
 
     __hash__ = None

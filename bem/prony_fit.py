@@ -16,6 +16,7 @@ second difference, over the log-spaced times, of the spectrum relative to the mo
 each term relaxes. It damps the alternating spectra that noise induces without biasing a
 smooth spectrum; ``smoothing = 0`` is the plain least-squares fit.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -58,17 +59,27 @@ class FitReport:
 
     def as_dict(self):
         """Plain-number dictionary (for JSON)."""
-        return {"storage_max": self.storage_max, "storage_rms": self.storage_rms,
-                "loss_max": self.loss_max, "loss_rms": self.loss_rms, "terms": self.terms,
-                "smoothing": self.smoothing, "frequency_band": list(self.frequency_band)}
+        return {
+            "storage_max": self.storage_max,
+            "storage_rms": self.storage_rms,
+            "loss_max": self.loss_max,
+            "loss_rms": self.loss_rms,
+            "terms": self.terms,
+            "smoothing": self.smoothing,
+            "frequency_band": list(self.frequency_band),
+        }
 
 
 def relative_errors(fitted, storage, loss):
     """``(max, rms)`` of ``|E'_fit/E' - 1|`` and of ``|E''_fit/E'' - 1|`` (4 floats)."""
     r1 = fitted.real / storage - 1.0
     r2 = fitted.imag / loss - 1.0
-    return (float(np.max(np.abs(r1))), float(np.sqrt(np.mean(r1**2))),
-            float(np.max(np.abs(r2))), float(np.sqrt(np.mean(r2**2))))
+    return (
+        float(np.max(np.abs(r1))),
+        float(np.sqrt(np.mean(r1**2))),
+        float(np.max(np.abs(r2))),
+        float(np.sqrt(np.mean(r2**2))),
+    )
 
 
 def check_dma(frequencies, storage, loss, hz=False):
@@ -79,10 +90,14 @@ def check_dma(frequencies, storage, loss, hz=False):
     e1 = check_array("storage", storage, ndim=1, positive=True)
     e2 = check_array("loss", loss, ndim=1)
     if not (w.shape == e1.shape == e2.shape):
-        raise InputError(f"frequencies, storage and loss must have the same length, got "
-                         f"{w.size}, {e1.size}, {e2.size}")
+        raise InputError(
+            f"frequencies, storage and loss must have the same length, got "
+            f"{w.size}, {e1.size}, {e2.size}"
+        )
     if np.any(e2 < 0):
-        raise InputError(f"loss must be >= 0 Pa everywhere (a passive material dissipates), got min {e2.min():g}")
+        raise InputError(
+            f"loss must be >= 0 Pa everywhere (a passive material dissipates), got min {e2.min():g}"
+        )
     return w, e1, e2
 
 
@@ -139,9 +154,9 @@ def refine_terms(w, e1, e2, E0, moduli, times, *, loss_floor=1e-4, bounds=None):
     n = moduli.size
 
     def parts(p):
-        u = w[:, None] * np.exp(p[1 + n:])[None, :]
+        u = w[:, None] * np.exp(p[1 + n :])[None, :]
         d = 1.0 + u**2
-        return np.exp(p[0]), np.exp(p[1:1 + n]), u, d
+        return np.exp(p[0]), np.exp(p[1 : 1 + n]), u, d
 
     def residual(p):
         e0, ek, u, d = parts(p)
@@ -149,22 +164,36 @@ def refine_terms(w, e1, e2, E0, moduli, times, *, loss_floor=1e-4, bounds=None):
 
     def jacobian(p):
         e0, ek, u, d = parts(p)
-        top = np.hstack([np.full((w.size, 1), e0), ek * u**2 / d, ek * 2 * u**2 / d**2]) / e1[:, None]
-        bot = np.hstack([np.zeros((w.size, 1)), ek * u / d, ek * u * (1 - u**2) / d**2]) / s2[:, None]
+        top = (
+            np.hstack([np.full((w.size, 1), e0), ek * u**2 / d, ek * 2 * u**2 / d**2]) / e1[:, None]
+        )
+        bot = (
+            np.hstack([np.zeros((w.size, 1)), ek * u / d, ek * u * (1 - u**2) / d**2]) / s2[:, None]
+        )
         return np.vstack([top, bot])
 
     p0 = np.concatenate([[np.log(E0)], np.log(moduli), np.log(times)])
     lo = np.full(p0.size, -np.inf)
     hi = np.full(p0.size, np.inf)
     if bounds is not None:
-        lo[1 + n:], hi[1 + n:] = np.log(bounds[0]), np.log(bounds[1])
-        p0[1 + n:] = np.clip(p0[1 + n:], lo[1 + n:] + 1e-9, hi[1 + n:] - 1e-9)
+        lo[1 + n :], hi[1 + n :] = np.log(bounds[0]), np.log(bounds[1])
+        p0[1 + n :] = np.clip(p0[1 + n :], lo[1 + n :] + 1e-9, hi[1 + n :] - 1e-9)
     with threadpool_limits(1):  # small dense SVDs: threads only contend
-        sol = least_squares(residual, p0, jac=jacobian, bounds=(lo, hi), method="trf", x_scale="jac",
-                            xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=100)
+        sol = least_squares(
+            residual,
+            p0,
+            jac=jacobian,
+            bounds=(lo, hi),
+            method="trf",
+            x_scale="jac",
+            xtol=1e-12,
+            ftol=1e-12,
+            gtol=1e-12,
+            max_nfev=100,
+        )
     if not sol.cost <= 0.5 * np.sum(residual(p0) ** 2):
         return E0, moduli, times
-    ek, t = merge_close_terms(np.exp(sol.x[1:1 + n]), np.exp(sol.x[1 + n:]))
+    ek, t = merge_close_terms(np.exp(sol.x[1 : 1 + n]), np.exp(sol.x[1 + n :]))
     return float(np.exp(sol.x[0])), ek, t
 
 
@@ -193,17 +222,24 @@ def fit_prony_series(w, e1, e2, taus, *, smoothing=0.0, loss_floor=1e-4, refine=
     taus = np.sort(np.asarray(taus, dtype=float))
     x, _ = solve_nnls(w, e1, e2, taus, smoothing=smoothing, loss_floor=loss_floor)
     if not x[0] > 0:
-        raise InputError("fit_prony: the data imply a relaxed modulus E0 <= 0; extend the data to lower "
-                         "frequencies or pass times covering them")
+        raise InputError(
+            "fit_prony: the data imply a relaxed modulus E0 <= 0; extend the data to lower "
+            "frequencies or pass times covering them"
+        )
     keep = x[1:] > 1e-12 * x.sum()
     E0, moduli, times = float(x[0]), x[1:][keep], taus[keep]
     if refine and smoothing == 0 and moduli.size:
-        E0, moduli, times = refine_terms(w, e1, e2, E0, moduli, times, loss_floor=loss_floor,
-                                         bounds=(taus[0], taus[-1]))
+        E0, moduli, times = refine_terms(
+            w, e1, e2, E0, moduli, times, loss_floor=loss_floor, bounds=(taus[0], taus[-1])
+        )
     a1, a2 = _design(w, times)
     x = np.concatenate([[E0], moduli])
     fitted = a1 @ x + 1j * (a2 @ x)
     errs = relative_errors(fitted, e1, np.maximum(e2, loss_floor * np.hypot(e1, e2)))
-    report = FitReport(*errs, terms=int(moduli.size), smoothing=smoothing,
-                       frequency_band=(float(w.min()), float(w.max())))
+    report = FitReport(
+        *errs,
+        terms=int(moduli.size),
+        smoothing=smoothing,
+        frequency_band=(float(w.min()), float(w.max())),
+    )
     return E0, moduli, times, report

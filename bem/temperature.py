@@ -14,6 +14,7 @@ Temperatures are absolute (kelvin); activation energies are in J/mol.
 - Arrhenius: ``log10 a_T = E_a / (R ln 10) (1/T - 1/T_ref)``, with ``E_a > 0`` (J/mol) and
   ``R`` the molar gas constant.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -62,16 +63,23 @@ class WLF:
     def __post_init__(self):
         object.__setattr__(self, "C1", check_positive("C1", self.C1))
         object.__setattr__(self, "C2", check_positive("C2 (K)", self.C2))
-        object.__setattr__(self, "reference_temperature",
-                           check_positive("reference_temperature (K)", self.reference_temperature))
+        object.__setattr__(
+            self,
+            "reference_temperature",
+            check_positive("reference_temperature (K)", self.reference_temperature),
+        )
 
     def __call__(self, T):
         """``log10 a_T`` at ``T`` (K; scalar or array)."""
         dt = _temperatures(T) - self.reference_temperature
         if np.any(dt <= -self.C2):
-            raise InputError(f"WLF: temperature T must be > reference_temperature - C2 = "
-                             f"{self.reference_temperature - self.C2:g} K, got {T!r}")
-        out = self.C1 * (self.reference_temperature - _temperatures(T)) / (self.C2 + dt)  # +0.0 at T_ref
+            raise InputError(
+                f"WLF: temperature T must be > reference_temperature - C2 = "
+                f"{self.reference_temperature - self.C2:g} K, got {T!r}"
+            )
+        out = (
+            self.C1 * (self.reference_temperature - _temperatures(T)) / (self.C2 + dt)
+        )  # +0.0 at T_ref
         return float(out) if out.ndim == 0 else out
 
     def shift_factor(self, T):
@@ -95,15 +103,25 @@ class Arrhenius:
     reference_temperature: float
 
     def __post_init__(self):
-        object.__setattr__(self, "activation_energy",
-                           check_positive("activation_energy (J/mol)", self.activation_energy))
-        object.__setattr__(self, "reference_temperature",
-                           check_positive("reference_temperature (K)", self.reference_temperature))
+        object.__setattr__(
+            self,
+            "activation_energy",
+            check_positive("activation_energy (J/mol)", self.activation_energy),
+        )
+        object.__setattr__(
+            self,
+            "reference_temperature",
+            check_positive("reference_temperature (K)", self.reference_temperature),
+        )
 
     def __call__(self, T):
         """``log10 a_T`` at ``T`` (K; scalar or array)."""
         t = _temperatures(T)
-        out = self.activation_energy / (GAS_CONSTANT * np.log(10.0)) * (1.0 / t - 1.0 / self.reference_temperature)
+        out = (
+            self.activation_energy
+            / (GAS_CONSTANT * np.log(10.0))
+            * (1.0 / t - 1.0 / self.reference_temperature)
+        )
         return float(out) if out.ndim == 0 else out
 
     def shift_factor(self, T):
@@ -125,7 +143,9 @@ def fit_wlf(temperatures, log_shift, reference_temperature, weights=None):
     dt = T - reference_temperature
     off = np.abs(y) > 1e-12
     if off.sum() < 2:
-        raise InputError("fit_wlf needs at least 2 temperatures away from the reference temperature")
+        raise InputError(
+            "fit_wlf needs at least 2 temperatures away from the reference temperature"
+        )
     slope, icpt = np.polyfit(dt[off], dt[off] / y[off], 1)
     c1 = -1.0 / slope if slope < 0 else 10.0
     c2 = icpt * -c1 if icpt * -c1 > 0 else 50.0
@@ -135,8 +155,15 @@ def fit_wlf(temperatures, log_shift, reference_temperature, weights=None):
         return w * (-p[0] * dt / (p[1] + dt) - y)
 
     # C2 stays 1 K beyond the coldest point, where the law has its pole
-    sol = least_squares(residual, [c1, c2], bounds=([1e-6, 1.0 - min(dt.min(), 0.0)], [np.inf, np.inf]),
-                        x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14)
+    sol = least_squares(
+        residual,
+        [c1, c2],
+        bounds=([1e-6, 1.0 - min(dt.min(), 0.0)], [np.inf, np.inf]),
+        x_scale="jac",
+        xtol=1e-14,
+        ftol=1e-14,
+        gtol=1e-14,
+    )
     return WLF(float(sol.x[0]), float(sol.x[1]), float(reference_temperature))
 
 
@@ -148,9 +175,13 @@ def fit_arrhenius(temperatures, log_shift, reference_temperature, weights=None):
     x = 1.0 / T - 1.0 / reference_temperature
     denom = np.sum((w * x) ** 2)
     if denom == 0:
-        raise InputError("fit_arrhenius needs at least 1 temperature away from the reference temperature")
+        raise InputError(
+            "fit_arrhenius needs at least 1 temperature away from the reference temperature"
+        )
     slope = np.sum(w**2 * x * y) / denom
     if not slope > 0:
-        raise InputError(f"fit_arrhenius: the shift factors do not fall with temperature (slope {slope:g}); "
-                         "check the temperature column and its unit")
+        raise InputError(
+            f"fit_arrhenius: the shift factors do not fall with temperature (slope {slope:g}); "
+            "check the temperature column and its unit"
+        )
     return Arrhenius(float(slope * GAS_CONSTANT * np.log(10.0)), float(reference_temperature))

@@ -270,6 +270,7 @@ GALLERY_ORDER = [
     "sphere_sliding",
     "westergaard",
     "material_forms",
+    "temperature_shift",
     "anisotropy",
 ]
 

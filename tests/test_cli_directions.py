@@ -40,11 +40,11 @@ def _write(tmp_path, dirs, plots="false"):
 
 
 def test_direction_sweep_gives_mu_of_theta_and_a_polar_plot(tmp_path):
-    path = _write(tmp_path, "[0, 30, 90]", plots="true")
+    path = _write(tmp_path, "[0, 90]", plots="true")
     assert main(["run", str(path), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
     rec = json.loads((tmp_path / "out" / "results.json").read_text())
     table = rec["directions"]
-    assert table["direction_deg"] == [0, 30, 90]
+    assert table["direction_deg"] == [0, 90]
     assert (tmp_path / "out" / "friction_polar.png").is_file()
     mu = np.array(table["friction"])[:, 0]
     # each direction is the solver's own answer for that direction
@@ -53,7 +53,7 @@ def test_direction_sweep_gives_mu_of_theta_and_a_polar_plot(tmp_path):
         ref = bem.solve(scene.surface, scene.material, speed=0.03, load=0.05, direction=np.radians(deg))
         assert value == pytest.approx(ref.friction, rel=1e-12)
     # the anisotropic surface: along y differs from along x
-    assert abs(mu[2] / mu[0] - 1) > 0.05
+    assert abs(mu[1] / mu[0] - 1) > 0.05
     sub = json.loads((tmp_path / "out" / "direction_090.000" / "results.json").read_text())
     assert sub["direction_deg"] == 90
 

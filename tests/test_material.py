@@ -3,14 +3,15 @@
 The interconversion is exact partial fractions, so every identity here holds to round-off;
 tolerances are a few hundred ulps times the condition of the series (stated per test).
 """
+
 import numpy as np
 import pytest
+from conftest import make_prony30, make_seed
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
 from bem import Material
-from conftest import make_prony30, make_seed
 
 THREE = dict(E0=2e6, moduli=[1e6, 5e6, 3e7], times=[1e-4, 1e-2, 1.0])
 
@@ -34,7 +35,9 @@ def test_modulus_times_compliance_is_one(name):
     """``E(w) J(w) = 1`` on a dense grid; measured worst 9e-16, bound 1e-13 (a few hundred ulps)."""
     m = MATERIALS[name]
     assert np.all(m.compliances > 0) and np.all(m.creep_times > 0)
-    np.testing.assert_allclose(m.complex_modulus(W) * m.complex_compliance(W), 1.0, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(
+        m.complex_modulus(W) * m.complex_compliance(W), 1.0, rtol=0, atol=1e-13
+    )
     np.testing.assert_allclose(m.complex_compliance(W), 1 / m.complex_modulus(W), rtol=1e-13)
     assert np.all(m.complex_modulus(W).imag > 0)  # a passive solid dissipates at every w > 0
 
@@ -62,7 +65,9 @@ def test_creep_form_of_the_seed_material():
     np.testing.assert_allclose(a.complex_modulus(W), b.complex_modulus(W), rtol=1e-14)
     assert a.compliances[0] == pytest.approx(1 / a.E0 - 1 / a.E_inf, rel=1e-14)
     c = Material.from_creep(E0=1e7 / 3, compliances=[2e-7], times=[0.01])
-    assert c.E_inf == pytest.approx(1e7, rel=1e-14) and c.relaxation_times[0] == pytest.approx(0.01 / 3, rel=1e-14)
+    assert c.E_inf == pytest.approx(1e7, rel=1e-14) and c.relaxation_times[0] == pytest.approx(
+        0.01 / 3, rel=1e-14
+    )
 
 
 @pytest.mark.parametrize("name", MATERIALS)
@@ -76,7 +81,9 @@ def test_time_domain_limits(name):
     assert m.complex_modulus(0.0) == pytest.approx(m.E0, rel=1e-14)
     assert abs(m.complex_modulus(1e6 / m.relaxation_times.min()) / m.E_inf - 1) < 1e-5
     t = np.logspace(-9, 9, 500)
-    assert np.all(np.diff(m.creep_compliance(t)) >= 0) and np.all(np.diff(m.relaxation_modulus(t)) <= 0)
+    assert np.all(np.diff(m.creep_compliance(t)) >= 0) and np.all(
+        np.diff(m.relaxation_modulus(t)) <= 0
+    )
     assert np.all(m.relaxation_modulus(t) * m.creep_compliance(t) <= 1 + 1e-12)  # E(t) J(t) <= 1
 
 
@@ -90,8 +97,12 @@ def test_laplace_transforms_are_reciprocal(s):
 
     def laplace(f):
         edges = np.unique(np.concatenate([[0.0], np.sort(breaks), [40.0 / s + 40 * breaks.max()]]))
-        return sum(integrate.quad(lambda t: f(t) * np.exp(-s * t), a, b, epsabs=0, epsrel=1e-12,
-                                  limit=200)[0] for a, b in zip(edges[:-1], edges[1:]))
+        return sum(
+            integrate.quad(
+                lambda t: f(t) * np.exp(-s * t), a, b, epsabs=0, epsrel=1e-12, limit=200
+            )[0]
+            for a, b in zip(edges[:-1], edges[1:])
+        )
 
     e_s, j_s = laplace(m.relaxation_modulus), laplace(m.creep_compliance)
     assert s * e_s * s * j_s == pytest.approx(1.0, rel=1e-9)
@@ -165,7 +176,9 @@ def test_material_is_frozen_and_its_arrays_read_only():
     for arr in (m.moduli, m.relaxation_times, m.compliances, m.creep_times):
         with pytest.raises(ValueError):
             arr[0] = 1.0
-    assert np.all(np.diff(m.relaxation_times) < 0) and np.all(np.diff(m.creep_times) < 0)  # longest first
+    assert np.all(np.diff(m.relaxation_times) < 0) and np.all(
+        np.diff(m.creep_times) < 0
+    )  # longest first
 
 
 def test_elastic_material():
@@ -176,8 +189,10 @@ def test_elastic_material():
 
 
 @settings(derandomize=True, max_examples=60, deadline=None)
-@given(log_times=st.lists(st.floats(-6, 6), min_size=1, max_size=12, unique=True),
-       log_moduli=st.lists(st.floats(4, 9), min_size=12, max_size=12))
+@given(
+    log_times=st.lists(st.floats(-6, 6), min_size=1, max_size=12, unique=True),
+    log_moduli=st.lists(st.floats(4, 9), min_size=12, max_size=12),
+)
 def test_any_prony_series_interconverts(log_times, log_moduli):
     """Random series (moduli 1e4-1e9 Pa on E0 = 1e6 Pa, times over 12 decades): positive creep
     terms whose times interlace the relaxation times (lambda_k > tau_k), and E J = 1.
@@ -188,7 +203,9 @@ def test_any_prony_series_interconverts(log_times, log_moduli):
     assert np.all(m.compliances > 0)
     tau, lam = np.sort(m.relaxation_times), np.sort(m.creep_times)
     assert np.all(lam > tau) and np.all(lam[:-1] < tau[1:])  # one retardation time per interval
-    np.testing.assert_allclose(m.complex_modulus(W) * m.complex_compliance(W), 1.0, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(
+        m.complex_modulus(W) * m.complex_compliance(W), 1.0, rtol=0, atol=1e-12
+    )
 
 
 def test_term_order_does_not_matter():

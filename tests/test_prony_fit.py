@@ -5,6 +5,7 @@ The synthetic truth (:func:`dma_truth`) is DMA-like: 11 terms, one per decade fr
 with 1 % Gaussian noise on each of ``E'`` and ``E''``. In the top decade ``tan delta`` is
 0.01-0.05. Errors are against the noise-free truth.
 """
+
 import numpy as np
 import pytest
 
@@ -16,13 +17,17 @@ W = np.logspace(-4, 8, 121)
 
 
 def dma_truth():
-    return Material.from_prony(E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11))
+    return Material.from_prony(
+        E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11)
+    )
 
 
 def noisy(m, seed, level=0.01):
     rng = np.random.default_rng(seed)
     e = m.complex_modulus(W)
-    return e.real * (1 + level * rng.standard_normal(W.size)), e.imag * (1 + level * rng.standard_normal(W.size))
+    return e.real * (1 + level * rng.standard_normal(W.size)), e.imag * (
+        1 + level * rng.standard_normal(W.size)
+    )
 
 
 def errors(fit, m):
@@ -35,7 +40,9 @@ def test_both_moduli_hold_over_12_decades_with_1_percent_noise(seed):
     """Targets E' 3 %, E'' 5 %. Measured (seeds 1-3): E' 0.46-0.54 %, E'' 0.82-1.02 %."""
     m = dma_truth()
     e = m.complex_modulus(W)
-    assert 0.005 < np.min(e.imag[-10:] / e.real[-10:]) < 0.06  # a glassy tail with a small tan delta
+    assert (
+        0.005 < np.min(e.imag[-10:] / e.real[-10:]) < 0.06
+    )  # a glassy tail with a small tan delta
     fit = Material.fit_prony(W, *noisy(m, seed))
     d1, d2 = errors(fit, m)
     assert d1 < 0.03 and d2 < 0.05
@@ -45,15 +52,25 @@ def test_weighting_by_the_modulus_magnitude_misses_the_glassy_tail():
     """The same NNLS weighted by |E*| for both moduli (the weighting this fit replaces) leaves
     E'' 14 % off (seed 1): the test above can fail."""
     from scipy.optimize import nnls
+
     m = dma_truth()
     e1, e2 = noisy(m, 1)
     taus = np.logspace(-9, 5, 43)
     wt = W[:, None] * taus
     mag = np.hypot(e1, e2)[:, None]
-    a = np.vstack([np.hstack([np.ones((W.size, 1)), wt**2 / (1 + wt**2)]) / mag,
-                   np.hstack([np.zeros((W.size, 1)), wt / (1 + wt**2)]) / mag])
+    a = np.vstack(
+        [
+            np.hstack([np.ones((W.size, 1)), wt**2 / (1 + wt**2)]) / mag,
+            np.hstack([np.zeros((W.size, 1)), wt / (1 + wt**2)]) / mag,
+        ]
+    )
     cn = np.linalg.norm(a, axis=0)
-    x = nnls(a / cn, np.concatenate([e1, e2]) / np.concatenate([mag[:, 0], mag[:, 0]]), maxiter=5000)[0] / cn
+    x = (
+        nnls(
+            a / cn, np.concatenate([e1, e2]) / np.concatenate([mag[:, 0], mag[:, 0]]), maxiter=5000
+        )[0]
+        / cn
+    )
     keep = x[1:] > 0
     d1, d2 = errors(Material.from_prony(E0=x[0], moduli=x[1:][keep], times=taus[keep]), m)
     assert d2 > 0.05
@@ -112,7 +129,9 @@ def test_optimised_times_match_a_spectrum_between_the_grid_times():
     """Noise-free data from 11 terms placed between the default grid's times (3 per decade):
     NNLS on the grid alone leaves measured 3.8 % in E' and 4.1 % in E''; moving the times
     too recovers the series to round-off (measured 4e-15, bound 1e-9)."""
-    m = Material.from_prony(E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-6.85, 3.15, 11))
+    m = Material.from_prony(
+        E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-6.85, 3.15, 11)
+    )
     e = m.complex_modulus(W)
     taus = default_times(W, 3.0)
     grid = fit_prony_series(W, e.real, e.imag, taus, refine=False)

@@ -4,6 +4,7 @@
 scale by ``a_T`` with one rounding each, so the bound is a few ulps of the products
 ``w tau`` (measured worst 4e-16 relative; bound 1e-14).
 """
+
 import numpy as np
 import pytest
 from conftest import make_prony30, make_seed
@@ -33,7 +34,9 @@ def test_arrhenius_formula_values_and_sign():
     assert law(300.0) == 0.0
     expected = 100e3 / (GAS_CONSTANT * np.log(10)) * (1 / 330 - 1 / 300)
     assert law(330.0) == pytest.approx(expected, rel=1e-15) and law(330.0) < 0
-    assert np.log(law.shift_factor(280.0)) == pytest.approx(100e3 / GAS_CONSTANT * (1 / 280 - 1 / 300), rel=1e-13)
+    assert np.log(law.shift_factor(280.0)) == pytest.approx(
+        100e3 / GAS_CONSTANT * (1 / 280 - 1 / 300), rel=1e-13
+    )
 
 
 @pytest.mark.parametrize("law", LAWS)
@@ -44,7 +47,9 @@ def test_at_temperature_is_exact_superposition(law, make, T):
     hot = m.at_temperature(T, shift)
     a = 10.0 ** shift(T)
     np.testing.assert_allclose(hot.complex_modulus(W), m.complex_modulus(a * W), rtol=1e-14, atol=0)
-    np.testing.assert_allclose(hot.complex_compliance(W), m.complex_compliance(a * W), rtol=1e-14, atol=0)
+    np.testing.assert_allclose(
+        hot.complex_compliance(W), m.complex_compliance(a * W), rtol=1e-14, atol=0
+    )
     np.testing.assert_allclose(hot.creep_times, a * m.creep_times, rtol=2e-16)
     np.testing.assert_allclose(hot.compliances, m.compliances, rtol=0)
     assert hot.E0 == m.E0 and hot.E_inf == m.E_inf and hot.nu == m.nu
@@ -68,9 +73,15 @@ def test_hotter_is_softer_and_less_lossy_at_a_fixed_frequency():
     assert e_hot.real < m.complex_modulus(1.0).real < e_cold.real
 
 
-@pytest.mark.parametrize("args, name", [((0.0, 50.0, 300.0), "C1"), ((8.0, -1.0, 300.0), "C2"),
-                                        ((8.0, 50.0, 0.0), "reference_temperature"),
-                                        ((8.0, 50.0, float("nan")), "reference_temperature")])
+@pytest.mark.parametrize(
+    "args, name",
+    [
+        ((0.0, 50.0, 300.0), "C1"),
+        ((8.0, -1.0, 300.0), "C2"),
+        ((8.0, 50.0, 0.0), "reference_temperature"),
+        ((8.0, 50.0, float("nan")), "reference_temperature"),
+    ],
+)
 def test_wlf_rejects_bad_parameters(args, name):
     with pytest.raises(InputError, match=name):
         WLF(*args)
@@ -91,6 +102,7 @@ def test_bad_temperatures_and_laws_are_named():
 
 def dataclass_error():
     import dataclasses
+
     return dataclasses.FrozenInstanceError
 
 
@@ -108,12 +120,17 @@ def test_laws_fitted_to_their_own_values_come_back():
 
 def test_module_is_reachable_from_the_package():
     import bem
+
     assert bem.temperature is temperature and isinstance(LAWS["wlf"], bem.temperature.WLF)
 
 
 @settings(derandomize=True, max_examples=40, deadline=None)
-@given(c1=st.floats(1.0, 30.0), c2=st.floats(20.0, 300.0), dt=st.floats(-0.9, 3.0),
-       log_times=st.lists(st.floats(-6, 6), min_size=1, max_size=8, unique=True))
+@given(
+    c1=st.floats(1.0, 30.0),
+    c2=st.floats(20.0, 300.0),
+    dt=st.floats(-0.9, 3.0),
+    log_times=st.lists(st.floats(-6, 6), min_size=1, max_size=8, unique=True),
+)
 def test_any_law_and_series_superpose_exactly(c1, c2, dt, log_times):
     """Random WLF laws, temperatures from T_ref - 0.9 C2 to T_ref + 3 C2, random series: the
     shifted material is the reference at a_T w to round-off (bound 1e-13)."""
@@ -126,4 +143,6 @@ def test_any_law_and_series_superpose_exactly(c1, c2, dt, log_times):
     hot = m.at_temperature(T, law)
     w = np.logspace(-8, 8, 65)
     np.testing.assert_allclose(hot.complex_modulus(w), m.complex_modulus(a * w), rtol=1e-13, atol=0)
-    np.testing.assert_allclose(hot.complex_compliance(w), m.complex_compliance(a * w), rtol=1e-13, atol=0)
+    np.testing.assert_allclose(
+        hot.complex_compliance(w), m.complex_compliance(a * w), rtol=1e-13, atol=0
+    )

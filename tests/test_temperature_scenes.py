@@ -6,6 +6,7 @@ obeys time-temperature superposition itself: ``mu(v, T) = mu(a_T v, T_ref)``. Wi
 ``C1 = 9, C2 = 100 K`` the law gives ``log10 a_T = +1`` at ``T_ref - 10 K`` and ``-1`` at
 ``T_ref + 12.5 K`` exactly, so the three temperatures share speeds a decade apart.
 """
+
 import json
 
 import numpy as np
@@ -47,9 +48,14 @@ plots = PLOTS
 def test_scene_reads_the_shift_law_and_temperatures():
     s = scenes.parse(SCENE.replace("PLOTS", "false"))
     assert s.shift == WLF(9.0, 100.0, 300.0) and s.temperatures == (290.0, 300.0, 312.5)
-    assert s.shift(290.0) == pytest.approx(1.0, rel=1e-15) and s.shift(312.5) == pytest.approx(-1.0, rel=1e-15)
-    arr = scenes.parse(SCENE.replace("PLOTS", "false").replace(
-        'law = "wlf", C1 = 9.0, C2 = 100.0', 'law = "arrhenius", activation_energy = 1.5e5'))
+    assert s.shift(290.0) == pytest.approx(1.0, rel=1e-15) and s.shift(312.5) == pytest.approx(
+        -1.0, rel=1e-15
+    )
+    arr = scenes.parse(
+        SCENE.replace("PLOTS", "false").replace(
+            'law = "wlf", C1 = 9.0, C2 = 100.0', 'law = "arrhenius", activation_energy = 1.5e5'
+        )
+    )
     assert arr.shift == Arrhenius(1.5e5, 300.0)
 
 
@@ -76,7 +82,10 @@ def test_friction_obeys_time_temperature_superposition(tmp_path, capsys):
     assert rec["friction_curve_temperature"] == 300.0 and rec["all_converged"]
     from viscobem_cli.main import main
 
-    assert main(["run", str(tmp_path.parent / "scene.toml"), "--out", str(tmp_path), "--no-progress"]) == 0
+    assert (
+        main(["run", str(tmp_path.parent / "scene.toml"), "--out", str(tmp_path), "--no-progress"])
+        == 0
+    )
     printed = capsys.readouterr().out
     assert "290.00    300.00    312.50" in printed and "resumed: 9 finished point(s)" in printed
 
@@ -94,14 +103,17 @@ def _write_sweeps(path, unit_c=True):
     return m, law
 
 
-DMA_SCENE = SCENE.replace('''E0 = 3.3333333333333335e6
+DMA_SCENE = SCENE.replace(
+    """E0 = 3.3333333333333335e6
 E_inf = 1.0e7
 creep_time = 0.01
-shift = { law = "wlf", C1 = 9.0, C2 = 100.0, reference_temperature = 300.0 }''', '''dma = "sweeps.csv"
+shift = { law = "wlf", C1 = 9.0, C2 = 100.0, reference_temperature = 300.0 }""",
+    """dma = "sweeps.csv"
 dma_frequency_unit = "Hz"
 dma_modulus_unit = "MPa"
 dma_temperature_unit = "C"
-shift = { law = "wlf", reference_temperature = 296.15 }''').replace("[290.0, 300.0, 312.5]", "[296.15, 320.0]")
+shift = { law = "wlf", reference_temperature = 296.15 }""",
+).replace("[290.0, 300.0, 312.5]", "[296.15, 320.0]")
 
 
 def test_a_dma_table_with_temperatures_gives_a_master_curve_and_its_law(tmp_path):
@@ -111,24 +123,39 @@ def test_a_dma_table_with_temperatures_gives_a_master_curve_and_its_law(tmp_path
     m, law = _write_sweeps(tmp_path / "sweeps.csv")
     s = scenes.parse(DMA_SCENE.replace("PLOTS", "true"), base=tmp_path)
     assert isinstance(s.shift, WLF) and s.shift.reference_temperature == 296.15
-    assert s.shift.C1 == pytest.approx(8.86, rel=5e-3) and s.shift.C2 == pytest.approx(101.6, rel=5e-3)
+    assert s.shift.C1 == pytest.approx(8.86, rel=5e-3) and s.shift.C2 == pytest.approx(
+        101.6, rel=5e-3
+    )
     w = np.logspace(-1, 7, 50)
     np.testing.assert_allclose(s.material.complex_modulus(w), m.complex_modulus(w), rtol=1e-2)
     assert s.dma["T"].min() == pytest.approx(266.15) and s.dma["e1"].max() > 1e7  # units applied
     from viscobem_cli.temperatures import write_master_curve
+
     assert write_master_curve(s, tmp_path) == ["master_curve.png"]
     assert (tmp_path / "master_curve.png").stat().st_size > 1000
 
 
-@pytest.mark.parametrize("replace, words", [
-    (("temperatures = [290.0, 300.0, 312.5]", "temperatures = [290.0, -3.0]"), ["temperatures", "> 0 K"]),
-    (("temperatures = [290.0, 300.0, 312.5]", "temperatures = [150.0]"), ["reference_temperature - C2", "200"]),
-    (('shift = { law = "wlf", C1 = 9.0, C2 = 100.0, reference_temperature = 300.0 }\n', ""), ["shift law"]),
-    (('law = "wlf", C1 = 9.0', 'law = "vft", C1 = 9.0'), ["shift", "wlf", "arrhenius"]),
-    (("C2 = 100.0,", "C2 = 100.0, Tg = 200.0,"), ["'Tg'", "valid keys"]),
-    (("C1 = 9.0, ", ""), ["C1", "required"]),
-    (("C1 = 9.0", "C1 = -9.0"), ["C1", "> 0"]),
-])
+@pytest.mark.parametrize(
+    "replace, words",
+    [
+        (
+            ("temperatures = [290.0, 300.0, 312.5]", "temperatures = [290.0, -3.0]"),
+            ["temperatures", "> 0 K"],
+        ),
+        (
+            ("temperatures = [290.0, 300.0, 312.5]", "temperatures = [150.0]"),
+            ["reference_temperature - C2", "200"],
+        ),
+        (
+            ('shift = { law = "wlf", C1 = 9.0, C2 = 100.0, reference_temperature = 300.0 }\n', ""),
+            ["shift law"],
+        ),
+        (('law = "wlf", C1 = 9.0', 'law = "vft", C1 = 9.0'), ["shift", "wlf", "arrhenius"]),
+        (("C2 = 100.0,", "C2 = 100.0, Tg = 200.0,"), ["'Tg'", "valid keys"]),
+        (("C1 = 9.0, ", ""), ["C1", "required"]),
+        (("C1 = 9.0", "C1 = -9.0"), ["C1", "> 0"]),
+    ],
+)
 def test_bad_temperature_scenes_are_named(replace, words):
     text = SCENE.replace("PLOTS", "false").replace(*replace)
     with pytest.raises(InputError) as err:
@@ -143,12 +170,21 @@ def test_bad_dma_units_and_missing_reference_are_named(tmp_path):
     with pytest.raises(InputError, match="dma_modulus_unit must be one of"):
         scenes.parse(text.replace('"MPa"', '"psi"'), base=tmp_path)
     with pytest.raises(InputError, match="dma_temperature_unit"):
-        scenes.parse(text.replace('dma_temperature_unit = "C"', 'dma_temperature_unit = "F"'), base=tmp_path)
+        scenes.parse(
+            text.replace('dma_temperature_unit = "C"', 'dma_temperature_unit = "F"'), base=tmp_path
+        )
     with pytest.raises(InputError, match="reference_temperature"):
-        scenes.parse(text.replace('law = "wlf", reference_temperature = 296.15', 'law = "wlf"'), base=tmp_path)
+        scenes.parse(
+            text.replace('law = "wlf", reference_temperature = 296.15', 'law = "wlf"'),
+            base=tmp_path,
+        )
 
 
 def test_built_in_temperature_scene_parses():
     s = scenes.load("temperature")
-    assert len(s.temperatures) == 5 and isinstance(s.shift, WLF) and s.shift.reference_temperature == 296.15
+    assert (
+        len(s.temperatures) == 5
+        and isinstance(s.shift, WLF)
+        and s.shift.reference_temperature == 296.15
+    )
     assert s.material.E_inf / s.material.E0 == pytest.approx(200, rel=1e-3) and s.speeds.size == 9

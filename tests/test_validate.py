@@ -16,7 +16,7 @@ from validation import baselines, metrics
 from validation.cases import CASES, cylinder, periodic
 from viscobem_cli.main import main
 
-CHEAP = ["full_contact_rough", "elastic_rough_dense", "rubber"]
+CHEAP = ["rubber", "full_contact_rough", "elastic_rough_dense"]  # registry order
 
 
 # ------------------------------------------------------------------ metrics

@@ -10,6 +10,8 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
+
 __all__ = ["write_reports", "write_json", "write_markdown", "write_html", "plots"]
 
 
@@ -132,34 +134,36 @@ def plots(case):
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.ticker import NullFormatter
 
     figs = []
     for prof in case["profiles"]:
+        # plotted in MPa and mm (the JSON keeps SI); the exact curve is a line, computed ones markers
         fig, (ax, ae) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True, gridspec_kw=dict(height_ratios=[3, 2]))
         for name, (x, p) in prof["curves"].items():
-            style = dict(lw=1.6, color="k") if name == prof["reference"] else dict(marker=".", ms=3, lw=0.8)
-            ax.plot(x, p, label=name, **style)
-        ax.set_ylabel("pressure (Pa)")
+            exact = name == prof["reference"]
+            style = dict(lw=1.6, color="k") if exact else dict(marker=".", ms=3, lw=0.6, alpha=0.85)
+            ax.plot(np.asarray(x) * 1e3, np.asarray(p) / 1e6, label=name, **style)
+        ax.set_ylabel("pressure (MPa)")
         ax.legend(fontsize=8)
         ax.set_title(prof["label"], fontsize=9)
         for name, (x, e) in prof["errors"].items():
-            ae.plot(x, e, marker=".", ms=3, lw=0.8, label=f"{name} - {prof['reference']}")
+            ae.plot(np.asarray(x) * 1e3, np.asarray(e) / 1e6, marker=".", ms=3, lw=0.8,
+                    label=f"{name} - {prof['reference']}")
         ae.axhline(0, color="k", lw=0.5)
-        ae.set_ylabel("pressure error (Pa)")
-        ae.set_xlabel(prof["xlabel"])
+        ae.set_ylabel("pressure error (MPa)")
+        ae.set_xlabel(prof["xlabel"].replace("(m)", "(mm)"))
         ae.legend(fontsize=8)
         fig.subplots_adjust(left=0.13, right=0.97, top=0.93, bottom=0.1, hspace=0.08)
         figs.append((f"pressure: {prof['label']}", fig))
     for sw in case["sweeps"]:
         fig, ax = plt.subplots(figsize=(7, 4))
         for name, (x, y) in sw["curves"].items():
+            # a dense (exact) curve is a line; computed points are markers only, never joined
+            # by straight lines that would cut across the exact curve between them
             dense = len(x) > 12
-            ax.plot(x, y, label=name, **(dict(lw=1.5, color="k") if dense else dict(marker="o", ms=5, lw=0.8)))
+            ax.plot(x, y, label=name, **(dict(lw=1.5, color="k") if dense else dict(marker="o", ms=5, ls="none")))
         ax.set_xscale("log" if sw["logx"] else "linear")
         ax.set_yscale("log" if sw["logy"] else "linear")
-        ax.xaxis.set_minor_formatter(NullFormatter())
-        ax.yaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel(sw["xlabel"])
         ax.set_ylabel(sw["ylabel"])
         ax.set_title(sw["title"], fontsize=9)
@@ -173,7 +177,6 @@ def plots(case):
         ax.barh(range(len(labels)), [r["seconds"] for r in case["runs"]])
         ax.set_yticks(range(len(labels)), labels, fontsize=7)
         ax.set_xscale("log")
-        ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel("wall time (s)")
         ax.invert_yaxis()
         fig.subplots_adjust(left=0.4, right=0.97, top=1 - 0.15 / height, bottom=0.65 / height)

@@ -27,6 +27,7 @@ Reading the table: pyvisco shifts by ``E'`` alone, which is undetermined where `
 divided by the glassy modulus) on one term per decade, which leaves the small loss modulus of
 the tails almost unweighted.
 """
+
 import argparse
 import contextlib
 import io
@@ -49,14 +50,18 @@ TEMPS = TREF + np.arange(-45.0, 61.0, 5.0)
 
 def truth():
     """The 11-term series (Pa, s) both problems are made from."""
-    return Material.from_prony(E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11))
+    return Material.from_prony(
+        E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11)
+    )
 
 
 def prony12_data(seed):
     m = truth()
     rng = np.random.default_rng(seed)
     e = m.complex_modulus(W12)
-    return e.real * (1 + 0.01 * rng.standard_normal(W12.size)), e.imag * (1 + 0.01 * rng.standard_normal(W12.size))
+    return e.real * (1 + 0.01 * rng.standard_normal(W12.size)), e.imag * (
+        1 + 0.01 * rng.standard_normal(W12.size)
+    )
 
 
 def master_data(seed):
@@ -66,8 +71,15 @@ def master_data(seed):
     cols = [[], [], [], []]
     for t in TEMPS:
         e = m.at_temperature(t, LAW).complex_modulus(2 * np.pi * HZ)
-        for c, v in zip(cols, (HZ, np.full(HZ.size, t), e.real * (1 + 0.01 * rng.standard_normal(HZ.size)),
-                               e.imag * (1 + 0.01 * rng.standard_normal(HZ.size)))):
+        for c, v in zip(
+            cols,
+            (
+                HZ,
+                np.full(HZ.size, t),
+                e.real * (1 + 0.01 * rng.standard_normal(HZ.size)),
+                e.imag * (1 + 0.01 * rng.standard_normal(HZ.size)),
+            ),
+        ):
             c.append(v)
     return [np.concatenate(c) for c in cols]
 
@@ -75,8 +87,12 @@ def master_data(seed):
 def _errors(fitted, true):
     r1 = np.abs(fitted.real / true.real - 1)
     r2 = np.abs(fitted.imag / true.imag - 1)
-    return {"storage_max": float(r1.max()), "storage_rms": float(np.sqrt(np.mean(r1**2))),
-            "loss_max": float(r2.max()), "loss_rms": float(np.sqrt(np.mean(r2**2)))}
+    return {
+        "storage_max": float(r1.max()),
+        "storage_rms": float(np.sqrt(np.mean(r1**2))),
+        "loss_max": float(r2.max()),
+        "loss_rms": float(np.sqrt(np.mean(r2**2))),
+    }
 
 
 def _pyvisco_master(frame):
@@ -127,14 +143,26 @@ def run_prony12(seed):
     rows = []
     t0 = time.perf_counter()
     fit = Material.fit_prony(W12, e1, e2)
-    rows.append({"method": "viscobem fit_prony", "time": time.perf_counter() - t0, "terms": int(fit.moduli.size),
-                 **_errors(fit.complex_modulus(W12), true)})
+    rows.append(
+        {
+            "method": "viscobem fit_prony",
+            "time": time.perf_counter() - t0,
+            "terms": int(fit.moduli.size),
+            **_errors(fit.complex_modulus(W12), true),
+        }
+    )
     frame = pd.DataFrame({"f": W12 / (2 * np.pi), "E_stor": e1 / 1e6, "E_loss": e2 / 1e6})
     for opt in (False, True):
         t0 = time.perf_counter()
         mat = _pyvisco_prony(_pyvisco_master(frame.copy()), opt)
-        rows.append({"method": f"pyvisco{' opt' if opt else ''}", "time": time.perf_counter() - t0,
-                     "terms": int(mat.moduli.size), **_errors(mat.complex_modulus(W12), true)})
+        rows.append(
+            {
+                "method": f"pyvisco{' opt' if opt else ''}",
+                "time": time.perf_counter() - t0,
+                "terms": int(mat.moduli.size),
+                **_errors(mat.complex_modulus(W12), true),
+            }
+        )
     return rows
 
 
@@ -155,8 +183,11 @@ def _reference_errors(material):
 
 
 def _law_errors(law):
-    return {"C1_rel": law.C1 / LAW.C1 - 1, "C2_rel": law.C2 / LAW.C2 - 1,
-            "log_aT_max": float(np.max(np.abs(law(TEMPS) - LAW(TEMPS))))}
+    return {
+        "C1_rel": law.C1 / LAW.C1 - 1,
+        "C2_rel": law.C2 / LAW.C2 - 1,
+        "log_aT_max": float(np.max(np.abs(law(TEMPS) - LAW(TEMPS)))),
+    }
 
 
 def _pyvisco_master_curve(f, T, e1, e2, opt):
@@ -164,7 +195,9 @@ def _pyvisco_master_curve(f, T, e1, e2, opt):
     from pyvisco import master, shift
 
     label = np.searchsorted(TEMPS, T - 1e-6)
-    df_raw = pd.DataFrame({"f_set": f, "E_stor": e1 / 1e6, "E_loss": e2 / 1e6, "T": T - 273.15, "Set": label})
+    df_raw = pd.DataFrame(
+        {"f_set": f, "E_stor": e1 / 1e6, "E_loss": e2 / 1e6, "T": T - 273.15, "Set": label}
+    )
     df_raw["T_round"] = df_raw["T"].round()
     df_raw.domain, df_raw.modul = "freq", "E"
     ref = round(TREF - 273.15)
@@ -184,15 +217,31 @@ def run_master(seed):
     t0 = time.perf_counter()
     fit, law = Material.fit_master_curve(f, T, e1, e2, reference_temperature=TREF, hz=True)
     shifts = float(np.max(np.abs(np.array(fit.fit_report.log_shift) - LAW(TEMPS))))
-    rows.append({"method": "viscobem fit_master_curve", "time": time.perf_counter() - t0,
-                 "terms": int(fit.moduli.size), "shifts_max": shifts, **_law_errors(law),
-                 **_data_errors(fit, law, m), **_reference_errors(fit)})
+    rows.append(
+        {
+            "method": "viscobem fit_master_curve",
+            "time": time.perf_counter() - t0,
+            "terms": int(fit.moduli.size),
+            "shifts_max": shifts,
+            **_law_errors(law),
+            **_data_errors(fit, law, m),
+            **_reference_errors(fit),
+        }
+    )
     for opt in (False, True):
         t0 = time.perf_counter()
         mat, law, shifts = _pyvisco_master_curve(f, T, e1, e2, opt)
-        rows.append({"method": f"pyvisco{' opt' if opt else ''}", "time": time.perf_counter() - t0,
-                     "terms": int(mat.moduli.size), "shifts_max": shifts, **_law_errors(law),
-                     **_data_errors(mat, law, m), **_reference_errors(mat)})
+        rows.append(
+            {
+                "method": f"pyvisco{' opt' if opt else ''}",
+                "time": time.perf_counter() - t0,
+                "terms": int(mat.moduli.size),
+                "shifts_max": shifts,
+                **_law_errors(law),
+                **_data_errors(mat, law, m),
+                **_reference_errors(mat),
+            }
+        )
     return rows
 
 
@@ -201,8 +250,12 @@ def _summary(rows_by_seed):
     out = []
     for method in [r["method"] for r in rows_by_seed[0]]:
         rows = [r for seeds in rows_by_seed for r in seeds if r["method"] == method]
-        row = {"method": method, "seeds": len(rows), "time": float(np.median([r["time"] for r in rows])),
-               "terms": int(np.median([r["terms"] for r in rows]))}
+        row = {
+            "method": method,
+            "seeds": len(rows),
+            "time": float(np.median([r["time"] for r in rows])),
+            "terms": int(np.median([r["terms"] for r in rows])),
+        }
         for key in rows[0]:
             if key not in row:
                 row[key] = float(np.max(np.abs([r[key] for r in rows])))
@@ -212,13 +265,32 @@ def _summary(rows_by_seed):
 
 def _table(result, markdown=False):
     lines = []
-    for problem, cols in (("prony12", ["storage_max", "storage_rms", "loss_max", "loss_rms"]),
-                          ("master", ["shifts_max", "C1_rel", "C2_rel", "log_aT_max", "storage_max", "storage_rms",
-                                      "loss_max", "loss_rms", "ref_storage_max", "ref_loss_max"])):
+    for problem, cols in (
+        ("prony12", ["storage_max", "storage_rms", "loss_max", "loss_rms"]),
+        (
+            "master",
+            [
+                "shifts_max",
+                "C1_rel",
+                "C2_rel",
+                "log_aT_max",
+                "storage_max",
+                "storage_rms",
+                "loss_max",
+                "loss_rms",
+                "ref_storage_max",
+                "ref_loss_max",
+            ],
+        ),
+    ):
         heads = ["method", "terms"] + cols + ["time s"]
-        rows = [[r["method"], str(r["terms"])] + [f"{r[c]:.4f}" for c in cols] + [f"{r['time']:.2f}"]
-                for r in result[problem]]
-        lines.append(f"{problem} (worst over {result['seeds']} seeds; relative errors, log_aT in decades)")
+        rows = [
+            [r["method"], str(r["terms"])] + [f"{r[c]:.4f}" for c in cols] + [f"{r['time']:.2f}"]
+            for r in result[problem]
+        ]
+        lines.append(
+            f"{problem} (worst over {result['seeds']} seeds; relative errors, log_aT in decades)"
+        )
         if markdown:
             lines += ["", "| " + " | ".join(heads) + " |", "|" + "---|" * len(heads)]
             lines += ["| " + " | ".join(r) + " |" for r in rows]
@@ -232,23 +304,36 @@ def _table(result, markdown=False):
 def run(quick=False, out_dir=None, seeds=None, echo=print):
     """Both problems over ``seeds``; print the table, write JSON and markdown, return the result."""
     seeds = list(seeds or ([1] if quick else [1, 2, 3, 4, 5]))
-    result = {"benchmark": "materials", "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-              "seeds": len(seeds), "wlf_truth": {"C1": LAW.C1, "C2": LAW.C2, "reference_temperature": TREF},
-              "prony12": _summary([run_prony12(s) for s in seeds]),
-              "master": _summary([run_master(s) for s in seeds])}
+    result = {
+        "benchmark": "materials",
+        "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        "seeds": len(seeds),
+        "wlf_truth": {"C1": LAW.C1, "C2": LAW.C2, "reference_temperature": TREF},
+        "prony12": _summary([run_prony12(s) for s in seeds]),
+        "master": _summary([run_master(s) for s in seeds]),
+    }
     echo(_table(result))
     if out_dir is not None:
         out = Path(out_dir)
         out.mkdir(parents=True, exist_ok=True)
         (out / "materials.json").write_text(json.dumps(result, indent=1))
-        about = __doc__.split("\n\n", 2)[2]  # the problems and methods, from this module's docstring
-        (out / "materials.md").write_text("# Prony fits and master curves: viscobem and pyvisco\n\n" + about
-                                          + "\n" + _table(result, markdown=True) + "\n")
+        about = __doc__.split("\n\n", 2)[
+            2
+        ]  # the problems and methods, from this module's docstring
+        (out / "materials.md").write_text(
+            "# Prony fits and master curves: viscobem and pyvisco\n\n"
+            + about
+            + "\n"
+            + _table(result, markdown=True)
+            + "\n"
+        )
     return result
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m viscobem_bench.materials", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(
+        prog="python -m viscobem_bench.materials", description=__doc__.split("\n")[0]
+    )
     parser.add_argument("--quick", action="store_true", help="one seed (smoke test)")
     parser.add_argument("--seeds", type=int, nargs="+", help="noise seeds (default 1 2 3 4 5)")
     parser.add_argument("--out", default=None, help="directory for materials.json and .md")

@@ -38,10 +38,18 @@ def _arr(values):
     return np.array([np.nan if v is None else v for v in values], dtype=float)
 
 
-def _sliding_arrow(ax):
-    ax.annotate("", xy=(0.9, 1.04), xytext=(0.6, 1.04), xycoords="axes fraction",
-                arrowprops={"arrowstyle": "->", "lw": 2})
-    ax.text(0.58, 1.04, "sliding (+x)", transform=ax.transAxes, ha="right", va="center", fontsize=8)
+def _sliding_arrow(ax, direction=0.0):
+    """The sliding direction (radians from +x) as an arrow above the map."""
+    c, s = np.cos(direction), np.sin(direction)
+    if direction == 0:
+        ax.annotate("", xy=(0.9, 1.04), xytext=(0.6, 1.04), xycoords="axes fraction",
+                    arrowprops={"arrowstyle": "->", "lw": 2})
+        ax.text(0.58, 1.04, "sliding (+x)", transform=ax.transAxes, ha="right", va="center", fontsize=8)
+        return
+    ax.annotate("", xy=(0.9 + 0.045 * c, 1.04 + 0.045 * s), xytext=(0.9 - 0.045 * c, 1.04 - 0.045 * s),
+                xycoords="axes fraction", arrowprops={"arrowstyle": "->", "lw": 2})
+    ax.text(0.0, 1.04, f"sliding {np.degrees(direction):.4g}° from +x", transform=ax.transAxes, ha="left",
+            va="center", fontsize=8)
 
 
 def _mark_peak(ax, xi, peak):
@@ -141,7 +149,7 @@ def contact_area(scene, record, path):
     _save(fig, path)
 
 
-def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0, discrete=None):
+def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0, discrete=None, direction=0.0):
     """A 2-D map (profile for 1-D) with the sliding direction marked; ``discrete``: tick
     labels of a map of integer classes (e.g. ``["no contact", "contact"]``)."""
     plt = _pyplot()
@@ -167,12 +175,12 @@ def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0, discre
             bar.ax.set_yticklabels(discrete)
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm)")
-        _sliding_arrow(ax)
+        _sliding_arrow(ax, direction)
     ax.set_title(rf"$\xi$ = {xi:.3g}: {title}", fontsize=9, pad=18)
     _save(fig, path)
 
 
-def deformed_surface(surface, f, xi, path, *, periodic=True):
+def deformed_surface(surface, f, xi, path, *, periodic=True, direction=0.0):
     """The deformed interface: the separation between the rigid surface and the deformed
     solid (map), and a profile along x through the row with most contact showing both
     surfaces (elevation toward the rigid body, µm)."""
@@ -193,7 +201,7 @@ def deformed_surface(surface, f, xi, path, *, periodic=True):
         top.set_ylabel("y (mm)")
         top.set_title(rf"$\xi$ = {xi:.3g}: gap between the rigid surface and the deformed solid", fontsize=9,
                       pad=18)
-        _sliding_arrow(top)
+        _sliding_arrow(top, direction)
         touch = np.asarray(f.pressure)[:, row] > 0
         rigid, solid, where = rigid[:, row], solid[:, row], f" at y = {surface.x[row] * 1e3:.3g} mm (dashed)"
     else:
@@ -366,11 +374,13 @@ def write_all(scene, record, fields, extras, out):
         j = i if i in fields else min(fields, key=lambda k: abs(k - i))
         f, x = fields[j], scene.xi[j]
         field_map(scene.surface, f.pressure, x, out / "pressure_map.png", label="pressure (MPa)", cmap="magma",
-                  scale=1e-6, title=rf"$\mu$ = {f.friction:.4g}, contact {100 * f.contact_fraction:.2f} %")
+                  scale=1e-6, title=rf"$\mu$ = {f.friction:.4g}, contact {100 * f.contact_fraction:.2f} %",
+                  direction=scene.direction)
         field_map(scene.surface, (f.pressure > 0).astype(int), x, out / "contact_map.png", label="", cmap=None,
                   title=f"contact area {100 * f.contact_fraction:.2f} % (realisation 0)",
-                  discrete=["no contact", "contact"])
-        deformed_surface(scene.surface, f, x, out / "deformed_surface.png", periodic=scene.periodic)
+                  discrete=["no contact", "contact"], direction=scene.direction)
+        deformed_surface(scene.surface, f, x, out / "deformed_surface.png", periodic=scene.periodic,
+                         direction=scene.direction)
         names += ["pressure_map.png", "contact_map.png", "deformed_surface.png"]
     if scene.outputs["anisotropy"]:
         polar_m2(scene, record, 0, i, out / "polar_m2.png")

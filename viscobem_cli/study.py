@@ -229,7 +229,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
         return run_sweep(run_scene, scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
     check_sweep(scene.surface, scene.material, speeds=scene.speeds, loads=scene.loads, rtol=scene.rtol)
     if scene.temperatures:  # one sweep per temperature (viscobem_cli.temperatures)
-        return temperatures.run(scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
+        return temperatures.run(scene, out_dir, run_scene, progress=progress, scheduler=scheduler, workers=workers)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)

@@ -23,6 +23,7 @@ the friction coefficient over log10 speed and T) and ``friction_curves_temperatu
 (one curve per temperature); ``master_curve.png`` when the material was fitted to sweeps at
 several temperatures (raw data, data shifted by the fitted law, and the fit).
 """
+
 import dataclasses
 import json
 import time
@@ -40,14 +41,18 @@ from .sweep import write_atomic
 FREQUENCY_UNITS = {"rad/s": 1.0, "Hz": 2 * np.pi}
 MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
 TEMPERATURE_OFFSETS = {"K": 0.0, "C": 273.15}
-SHIFT_KEYS = {"wlf": {"law", "C1", "C2", "reference_temperature"},
-              "arrhenius": {"law", "activation_energy", "reference_temperature"}}
+SHIFT_KEYS = {
+    "wlf": {"law", "C1", "C2", "reference_temperature"},
+    "arrhenius": {"law", "activation_energy", "reference_temperature"},
+}
 
 
 def _unit(t, key, table, default):
     unit = t.get(key, default)
     if unit not in table:
-        raise InputError(f"[material] {key} must be one of {', '.join(map(repr, table))}, got {unit!r}")
+        raise InputError(
+            f"[material] {key} must be one of {', '.join(map(repr, table))}, got {unit!r}"
+        )
     return table[unit]
 
 
@@ -57,17 +62,27 @@ def read_dma(t, base):
         raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
     path = (Path(base) / t["dma"]).resolve()
     try:
-        data = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2)
+        data = np.loadtxt(
+            path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2
+        )
     except (OSError, ValueError) as err:
         raise InputError(f"[material] dma: cannot read {str(path)!r}: {err}") from None
     if data.shape[1] not in (3, 4):
-        raise InputError(f"[material] dma: {str(path)!r} needs 3 columns (frequency, storage, loss) or 4 "
-                         f"(frequency, storage, loss, temperature), got {data.shape[1]}")
+        raise InputError(
+            f"[material] dma: {str(path)!r} needs 3 columns (frequency, storage, loss) or 4 "
+            f"(frequency, storage, loss, temperature), got {data.shape[1]}"
+        )
     w = data[:, 0] * _unit(t, "dma_frequency_unit", FREQUENCY_UNITS, "rad/s")
     scale = _unit(t, "dma_modulus_unit", MODULUS_UNITS, "Pa")
     offset = _unit(t, "dma_temperature_unit", TEMPERATURE_OFFSETS, "K")
     temps = data[:, 3] + offset if data.shape[1] == 4 else None
-    return {"w": w, "e1": data[:, 1] * scale, "e2": data[:, 2] * scale, "T": temps, "path": str(path)}
+    return {
+        "w": w,
+        "e1": data[:, 1] * scale,
+        "e2": data[:, 2] * scale,
+        "T": temps,
+        "path": str(path),
+    }
 
 
 def _shift_table(t):
@@ -75,12 +90,15 @@ def _shift_table(t):
     if table is None:
         return None
     if not isinstance(table, dict) or table.get("law") not in SHIFT_KEYS:
-        raise InputError("[material] shift must be a table with law = 'wlf' or 'arrhenius', got "
-                         f"{table!r}")
+        raise InputError(
+            f"[material] shift must be a table with law = 'wlf' or 'arrhenius', got {table!r}"
+        )
     unknown = sorted(set(table) - SHIFT_KEYS[table["law"]])
     if unknown:
-        raise InputError(f"[material] shift: unknown key(s) {', '.join(map(repr, unknown))} for law = "
-                         f"{table['law']!r}; valid keys: {', '.join(sorted(SHIFT_KEYS[table['law']]))}")
+        raise InputError(
+            f"[material] shift: unknown key(s) {', '.join(map(repr, unknown))} for law = "
+            f"{table['law']!r}; valid keys: {', '.join(sorted(SHIFT_KEYS[table['law']]))}"
+        )
     if "reference_temperature" not in table:
         raise InputError("[material] shift: reference_temperature (K) is required")
     return table
@@ -94,12 +112,21 @@ def dma_material(t, base, nu):
         return Material.fit_prony(data["w"], data["e1"], data["e2"], terms_per_decade=per, nu=nu)
     table = _shift_table(t)
     if table is None or set(table) - {"law", "reference_temperature"}:
-        raise InputError("[material] a DMA table with a temperature column needs shift = { law = 'wlf' | "
-                         "'arrhenius', reference_temperature = <K> } (the law's parameters are fitted to "
-                         "the sweeps), got " + repr(table))
-    material, _ = Material.fit_master_curve(data["w"], data["T"], data["e1"], data["e2"],
-                                            reference_temperature=table["reference_temperature"],
-                                            shift=table["law"], terms_per_decade=per, nu=nu)
+        raise InputError(
+            "[material] a DMA table with a temperature column needs shift = { law = 'wlf' | "
+            "'arrhenius', reference_temperature = <K> } (the law's parameters are fitted to "
+            "the sweeps), got " + repr(table)
+        )
+    material, _ = Material.fit_master_curve(
+        data["w"],
+        data["T"],
+        data["e1"],
+        data["e2"],
+        reference_temperature=table["reference_temperature"],
+        shift=table["law"],
+        terms_per_decade=per,
+        nu=nu,
+    )
     return material
 
 
@@ -112,8 +139,10 @@ def shift_law(t, material):
         return None
     missing = sorted(SHIFT_KEYS[table["law"]] - set(table))
     if missing:
-        raise InputError(f"[material] shift: {', '.join(missing)} required for law = {table['law']!r} "
-                         "(or give a DMA table with a temperature column to fit them)")
+        raise InputError(
+            f"[material] shift: {', '.join(missing)} required for law = {table['law']!r} "
+            "(or give a DMA table with a temperature column to fit them)"
+        )
     args = {k: v for k, v in table.items() if k != "law"}
     for key, value in args.items():
         if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -126,13 +155,23 @@ def loading_temperatures(t, law):
     if "temperatures" not in t:
         return ()
     values = t["temperatures"]
-    if not (isinstance(values, list) and values and all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf for v in values)):
-        raise InputError(f"[loading] temperatures must be a non-empty list of absolute temperatures > 0 K, "
-                         f"got {values!r}")
+    if not (
+        isinstance(values, list)
+        and values
+        and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf
+            for v in values
+        )
+    ):
+        raise InputError(
+            f"[loading] temperatures must be a non-empty list of absolute temperatures > 0 K, "
+            f"got {values!r}"
+        )
     if law is None:
-        raise InputError("[loading] temperatures need a shift law: [material] shift = { law = 'wlf', C1, C2, "
-                         "reference_temperature } or a DMA table with a temperature column")
+        raise InputError(
+            "[loading] temperatures need a shift law: [material] shift = { law = 'wlf', C1, C2, "
+            "reference_temperature } or a DMA table with a temperature column"
+        )
     for v in values:
         law(float(v))  # a WLF law names temperatures at or below T_ref - C2
     return tuple(float(v) for v in values)
@@ -148,39 +187,76 @@ def folder_name(T):
     return f"T_{T:.2f}K"
 
 
-def run(scene, out_dir, *, progress=True, scheduler=None, workers=None):
-    """The speed sweep at every temperature of ``scene``; the combined record (also written)."""
-    from .study import run_scene
-
+def run(scene, out_dir, run_scene, *, progress=True, scheduler=None, workers=None):
+    """The speed sweep at every temperature of ``scene``, each by ``run_scene`` (the study of one
+    temperature, :func:`viscobem_cli.study.run_scene`); the combined record (also written)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     started = time.perf_counter()
     records = []
     for T in scene.temperatures:
-        sub = dataclasses.replace(scene, material=scene.material.at_temperature(T, scene.shift), temperatures=())
-        records.append(run_scene(sub, out / folder_name(T), progress=progress, scheduler=scheduler,
-                                 workers=workers))
+        sub = dataclasses.replace(
+            scene, material=scene.material.at_temperature(T, scene.shift), temperatures=()
+        )
+        records.append(
+            run_scene(
+                sub, out / folder_name(T), progress=progress, scheduler=scheduler, workers=workers
+            )
+        )
     law = scene.shift
-    table = {"temperature": list(scene.temperatures), "units": {"temperature": "K", "speed": "m/s"},
-             "shift": {"law": type(law).__name__, **vars(law)},
-             "log10_shift_factor": [float(law(T)) for T in scene.temperatures],
-             "folders": [folder_name(T) for T in scene.temperatures], "loads": []}
+    table = {
+        "temperature": list(scene.temperatures),
+        "units": {"temperature": "K", "speed": "m/s"},
+        "shift": {"law": type(law).__name__, **vars(law)},
+        "log10_shift_factor": [float(law(T)) for T in scene.temperatures],
+        "folders": [folder_name(T) for T in scene.temperatures],
+        "loads": [],
+    }
     for k, load in enumerate(scene.loads):
         curves = [r["curves"][k] for r in records]
-        table["loads"].append({"load": load, "speed": curves[0]["speed"],
-                               "friction": [c["friction"] for c in curves],
-                               "contact_fraction": [c["contact_fraction"] for c in curves]})
+        table["loads"].append(
+            {
+                "load": load,
+                "speed": curves[0]["speed"],
+                "friction": [c["friction"] for c in curves],
+                "contact_fraction": [c["contact_fraction"] for c in curves],
+            }
+        )
     nearest = int(np.argmin(np.abs(np.array(scene.temperatures) - law.reference_temperature)))
-    record = {key: records[nearest][key] for key in ("title", "scene", "material", "surface", "units",
-                                                     "conventions", "solver", "outputs", "friction_curve",
-                                                     "curves")}
-    extra = [f"at {T:g} K: {w}" for T, r in zip(scene.temperatures, records) for w in r["warnings"][len(scene.warnings):]]
-    record.update(temperature_sweep=table, friction_curve_temperature=scene.temperatures[nearest],
-                  warnings=list(scene.warnings) + extra,
-                  resumed_points=sum(r["resumed_points"] for r in records),
-                  all_converged=all(r["all_converged"] for r in records), complete=True,
-                  stages={"total": time.perf_counter() - started})
-    files = [f"{folder_name(T)}/{name}" for T, r in zip(scene.temperatures, records) for name in r["files"]]
+    record = {
+        key: records[nearest][key]
+        for key in (
+            "title",
+            "scene",
+            "material",
+            "surface",
+            "units",
+            "conventions",
+            "solver",
+            "outputs",
+            "friction_curve",
+            "curves",
+        )
+    }
+    extra = [
+        f"at {T:g} K: {w}"
+        for T, r in zip(scene.temperatures, records)
+        for w in r["warnings"][len(scene.warnings) :]
+    ]
+    record.update(
+        temperature_sweep=table,
+        friction_curve_temperature=scene.temperatures[nearest],
+        warnings=list(scene.warnings) + extra,
+        resumed_points=sum(r["resumed_points"] for r in records),
+        all_converged=all(r["all_converged"] for r in records),
+        complete=True,
+        stages={"total": time.perf_counter() - started},
+    )
+    files = [
+        f"{folder_name(T)}/{name}"
+        for T, r in zip(scene.temperatures, records)
+        for name in r["files"]
+    ]
     if scene.outputs.get("plots"):
         files += plot_temperature_sweep(table, out)
     files += write_master_curve(scene, out)
@@ -194,11 +270,19 @@ def summary(record):
     table = record["temperature_sweep"]
     lines = []
     for sweep in table["loads"]:
-        lines.append(f"  friction coefficient at load {sweep['load']:g} (N; N/m for profiles), by temperature (K):")
-        lines.append("  " + f"{'speed (m/s)':>12}" + "".join(f"{T:>10.2f}" for T in table["temperature"]))
+        lines.append(
+            f"  friction coefficient at load {sweep['load']:g} (N; N/m for profiles), by temperature (K):"
+        )
+        lines.append(
+            "  " + f"{'speed (m/s)':>12}" + "".join(f"{T:>10.2f}" for T in table["temperature"])
+        )
         for i, v in enumerate(sweep["speed"]):
             cells = [sweep["friction"][k][i] for k in range(len(table["temperature"]))]
-            lines.append("  " + f"{v:12.4e}" + "".join(f"{'failed':>10}" if c is None else f"{c:10.5f}" for c in cells))
+            lines.append(
+                "  "
+                + f"{v:12.4e}"
+                + "".join(f"{'failed':>10}" if c is None else f"{c:10.5f}" for c in cells)
+            )
     return "\n".join(lines)
 
 
@@ -212,17 +296,23 @@ def plot_temperature_sweep(table, out):
     T = np.array(table["temperature"])
     sweep = table["loads"][0]
     v = np.array(sweep["speed"], dtype=float)
-    mu = np.array([[np.nan if x is None else x for x in row] for row in sweep["friction"]], dtype=float)
+    mu = np.array(
+        [[np.nan if x is None else x for x in row] for row in sweep["friction"]], dtype=float
+    )
     written = []
     moving = v > 0
     if moving.sum() >= 2 and T.size >= 2:
         order = np.argsort(T)
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
-        mesh = ax.pcolormesh(np.log10(v[moving]), T[order], mu[order][:, moving], shading="nearest", cmap="viridis")
+        mesh = ax.pcolormesh(
+            np.log10(v[moving]), T[order], mu[order][:, moving], shading="nearest", cmap="viridis"
+        )
         fig.colorbar(mesh, ax=ax, label="friction coefficient")
         ax.set_xlabel("log10 sliding speed (m/s)")
         ax.set_ylabel("temperature (K)")
-        ax.set_title(f"friction against speed and temperature (load {sweep['load']:g} N, or N/m for profiles)")
+        ax.set_title(
+            f"friction against speed and temperature (load {sweep['load']:g} N, or N/m for profiles)"
+        )
         written.append(_save(fig, out / "friction_speed_temperature.png"))
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for k in np.argsort(T):
@@ -238,9 +328,15 @@ def plot_temperature_sweep(table, out):
 def write_master_curve(scene, out):
     """``master_curve.png`` when the material was fitted to DMA sweeps at several temperatures."""
     report = scene.material.fit_report
-    if not (isinstance(report, MasterCurveReport) and scene.outputs.get("plots") and scene.dma is not None):
+    if not (
+        isinstance(report, MasterCurveReport)
+        and scene.outputs.get("plots")
+        and scene.dma is not None
+    ):
         return []
-    return [plot_master_curve(scene.dma, scene.material, report.law, Path(out) / "master_curve.png")]
+    return [
+        plot_master_curve(scene.dma, scene.material, report.law, Path(out) / "master_curve.png")
+    ]
 
 
 def plot_master_curve(data, material, law, path):
@@ -254,8 +350,10 @@ def plot_master_curve(data, material, law, path):
     wr = w * 10.0 ** law(T)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.4), sharey=True)
     colors = plt.cm.coolwarm((T - T.min()) / max(np.ptp(T), 1e-12))
-    for ax, x, title in ((axes[0], w, "measured sweeps"),
-                         (axes[1], wr, f"shifted to {law.reference_temperature:g} K, and the fit")):
+    for ax, x, title in (
+        (axes[0], w, "measured sweeps"),
+        (axes[1], wr, f"shifted to {law.reference_temperature:g} K, and the fit"),
+    ):
         ax.scatter(x, data["e1"], s=8, c=colors, marker="o", label="E' (data)")
         ax.scatter(x, data["e2"], s=8, c=colors, marker="^", label="E'' (data)")
         ax.set_xscale("log")
@@ -269,7 +367,9 @@ def plot_master_curve(data, material, law, path):
     axes[0].set_ylabel("modulus (Pa); colour: temperature (blue cold, red hot)")
     axes[1].legend(fontsize="small")
     name = type(law).__name__
-    params = ", ".join(f"{k} = {v:.4g}" for k, v in vars(law).items() if k != "reference_temperature")
+    params = ", ".join(
+        f"{k} = {v:.4g}" for k, v in vars(law).items() if k != "reference_temperature"
+    )
     fig.suptitle(f"master curve: {name} ({params})")
     return _save(fig, path)
 
