@@ -9,6 +9,7 @@ its module on first use (PEP 562 module ``__getattr__``), as does every submodul
 (``bem.periodic``), so a script that needs only the periodic solver never pays for
 Persson's theory or the anisotropy tools.
 """
+
 import importlib
 import importlib.util
 

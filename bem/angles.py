@@ -4,6 +4,7 @@ Angles are radians from ``+x`` (axis 0) toward ``+y`` (axis 1). A direction with
 of a multiple of ``pi/2`` is that quarter turn exactly, so that the solvers can take their
 exact routes along the grid axes.
 """
+
 import math
 
 __all__ = ["quarter_turns", "unit_vector"]

@@ -1,4 +1,4 @@
-"""Anisotropy measures of fields on a periodic cell (SPEC §2.5; the seed's section 3).
+"""Anisotropy measures of fields on a periodic cell (docs/theory.md §6; the seed's section 3).
 
 Conventions: fields are 2-D arrays ``f[ix, iy]`` on a square periodic cell of side
 ``length`` (m), axis 0 = x; Fourier coefficients as in :mod:`bem.fft`. Every measure is
@@ -24,6 +24,7 @@ smoothed limit ``q -> 0`` (the ``q = 0`` mode itself is excluded from the averag
 marks the size and shape of the contact spots: spots elongated along y give a contour
 stretched along ``q_x``.
 """
+
 import dataclasses
 from dataclasses import dataclass
 
@@ -89,16 +90,24 @@ class SpectralMoments:
         return float(self.m2(self.theta_max + np.pi / 2))
 
     def as_dict(self):
-        return {"m20": self.m20, "m02": self.m02, "m11": self.m11, "gamma": self.gamma,
-                "theta_max": self.theta_max, "direction": self.direction}
+        return {
+            "m20": self.m20,
+            "m02": self.m02,
+            "m11": self.m11,
+            "gamma": self.gamma,
+            "theta_max": self.theta_max,
+            "direction": self.direction,
+        }
 
 
 def _in_sliding_frame(m20, m02, m11, direction):
     """The moment tensor in the frame ``(s, t)`` of the sliding direction (radians from +x)."""
     c, s = np.cos(direction), np.sin(direction)
-    return (m20 * c * c + 2 * m11 * c * s + m02 * s * s,
-            m20 * s * s - 2 * m11 * c * s + m02 * c * c,
-            (m02 - m20) * c * s + m11 * (c * c - s * s))
+    return (
+        m20 * c * c + 2 * m11 * c * s + m02 * s * s,
+        m20 * s * s - 2 * m11 * c * s + m02 * c * c,
+        (m02 - m20) * c * s + m11 * (c * c - s * s),
+    )
 
 
 def moments_from_tensor(m20, m02, m11):
@@ -177,21 +186,22 @@ def relative_moments(moments, reference):
     the same sliding direction; the result is too.
     """
     if moments.direction != reference.direction:
-        raise InputError(f"reference must be measured from the same sliding direction as moments "
-                         f"({moments.direction!r} rad), got {reference.direction!r} rad")
+        raise InputError(
+            f"reference must be measured from the same sliding direction as moments "
+            f"({moments.direction!r} rad), got {reference.direction!r} rad"
+        )
     m0 = np.array([[reference.m20, reference.m11], [reference.m11, reference.m02]])
     m = np.array([[moments.m20, moments.m11], [moments.m11, moments.m02]])
     vals, vecs = np.linalg.eigh(m0)
     if not vals.min() > 0:
         raise InputError("reference moments must be positive definite (a field with slopes in two directions)")
-    root = vecs @ np.diag(vals ** -0.5) @ vecs.T
+    root = vecs @ np.diag(vals**-0.5) @ vecs.T
     r = root @ m @ root
     rel = moments_from_tensor(r[0, 0], r[1, 1], r[0, 1])
     # direction in the original frame: ratio m2(theta) / m2_0(theta) is largest along it
     theta = np.linspace(0, np.pi, 721)[:-1]
     ratio = moments.m2(theta) / reference.m2(theta)
-    return SpectralMoments(rel.m20, rel.m02, rel.m11, rel.gamma, float(theta[np.argmax(ratio)]),
-                           moments.direction)
+    return SpectralMoments(rel.m20, rel.m02, rel.m11, rel.gamma, float(theta[np.argmax(ratio)]), moments.direction)
 
 
 @dataclass(frozen=True, eq=False)
@@ -318,9 +328,16 @@ class Ellipse:
 
     def as_dict(self):
         major, minor = self.semi_axes
-        return {"level": self.level, "semi_major": major, "semi_minor": minor,
-                "aspect_ratio": self.aspect_ratio, "orientation": self.orientation,
-                "stretch_x": self.stretch_x, "fit_residual": self.residual, "direction": self.direction}
+        return {
+            "level": self.level,
+            "semi_major": major,
+            "semi_minor": minor,
+            "aspect_ratio": self.aspect_ratio,
+            "orientation": self.orientation,
+            "stretch_x": self.stretch_x,
+            "fit_residual": self.residual,
+            "direction": self.direction,
+        }
 
 
 def psd_contour(cpsd, level=SEED_LEVEL, *, rays=180, step=0.02, direction=0.0):
@@ -347,8 +364,9 @@ def psd_contour(cpsd, level=SEED_LEVEL, *, rays=180, step=0.02, direction=0.0):
     phi = np.pi * np.arange(rays) / rays  # half circle suffices (even), mirrored below
     ix = n // 2 + np.outer(np.cos(phi), r)
     iy = n // 2 + np.outer(np.sin(phi), r)
-    vals = ndimage.map_coordinates(coeffs, [ix.ravel(), iy.ravel()], order=3, mode="grid-wrap",
-                                   prefilter=False).reshape(ix.shape)
+    vals = ndimage.map_coordinates(
+        coeffs, [ix.ravel(), iy.ravel()], order=3, mode="grid-wrap", prefilter=False
+    ).reshape(ix.shape)
     pts = []
     for k in range(rays):
         below = np.nonzero(vals[k] < level)[0]
@@ -359,8 +377,10 @@ def psd_contour(cpsd, level=SEED_LEVEL, *, rays=180, step=0.02, direction=0.0):
         rc = r[j - 1] + step * (f0 - level) / (f0 - f1)
         pts.append((rc * np.cos(phi[k]), rc * np.sin(phi[k])))
     if len(pts) < 8:
-        raise InputError(f"level {level!r}: the contour C/C0 = level was found along only {len(pts)} of "
-                         f"{rays} rays; choose a level between the map's values")
+        raise InputError(
+            f"level {level!r}: the contour C/C0 = level was found along only {len(pts)} of "
+            f"{rays} rays; choose a level between the map's values"
+        )
     p = np.array(pts) * dq
     theta = _check_direction(direction)
     c, sn = np.cos(theta), np.sin(theta)
@@ -371,5 +391,6 @@ def psd_contour(cpsd, level=SEED_LEVEL, *, rays=180, step=0.02, direction=0.0):
     resid = float(np.sqrt(np.mean((design @ coef - 1) ** 2)))
     if not (coef[0] > 0 and coef[2] > 0 and coef[0] * coef[2] > coef[1] ** 2):
         raise InputError(f"level {level!r}: the contour is not an ellipse (fit is indefinite)")
-    return Ellipse(A=float(coef[0]), B=float(coef[1]), D=float(coef[2]), points=p, level=level,
-                   residual=resid, direction=theta)
+    return Ellipse(
+        A=float(coef[0]), B=float(coef[1]), D=float(coef[2]), points=p, level=level, residual=resid, direction=theta
+    )

@@ -12,6 +12,7 @@ Traceback (most recent call last):
 ...
 bem.errors.InputError: speed must be a real number (not a string), got '0.01'
 """
+
 import difflib
 import math
 
@@ -95,5 +96,7 @@ def check_keywords(function, given, valid):
     for key in unknown:
         close = difflib.get_close_matches(key, sorted(valid), n=1, cutoff=0.6)
         parts.append(f"{key!r}" + (f" (did you mean {close[0]!r}?)" if close else ""))
-    raise InputError(f"{function}() got unknown keyword argument{'s' if len(parts) > 1 else ''} "
-                     f"{', '.join(parts)}; valid: {', '.join(sorted(valid))}")
+    raise InputError(
+        f"{function}() got unknown keyword argument{'s' if len(parts) > 1 else ''} "
+        f"{', '.join(parts)}; valid: {', '.join(sorted(valid))}"
+    )

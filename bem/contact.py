@@ -39,6 +39,7 @@ Under load control the load balance holds to round-off. A solve that fails raise
 [3] Eisenstat & Walker, SIAM J. Sci. Comput. 17 (1996) 16, doi:10.1137/0917003.
 [4] Hackbusch, Multi-Grid Methods and Applications, Springer (1985), ch. 5.
 """
+
 import logging
 import math
 from dataclasses import replace
@@ -47,12 +48,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from .contact_inner import max_phase
-from .contact_newton import (
-    Attempt,
-    ContactSolution,
-    attempt_solve,
-    complementarity_residual,
-)
+from .contact_newton import Attempt, ContactSolution, attempt_solve, complementarity_residual
 from .contact_options import ContactOptions
 from .contact_start import coarse_start
 from .errors import ConvergenceError, InputError
@@ -63,8 +59,18 @@ log = logging.getLogger(__name__)
 DEFAULT_OPTIONS = ContactOptions()
 
 
-def solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, maxiter=400, initial=None,
-                  raise_on_failure=True, options=DEFAULT_OPTIONS):
+def solve_contact(
+    op,
+    heights,
+    *,
+    mean_pressure=None,
+    approach=None,
+    rtol=1e-8,
+    maxiter=400,
+    initial=None,
+    raise_on_failure=True,
+    options=DEFAULT_OPTIONS,
+):
     """Solve the contact problem for operator ``op`` (see the module docstring).
 
     Parameters
@@ -109,17 +115,30 @@ def solve_contact(op, heights, *, mean_pressure=None, approach=None, rtol=1e-8, 
     with threadpool_limits(limits=1, user_api="blas"):
         coarse_matvecs, initial_approach = 0.0, None
         if initial is None and options.coarsen:
+
             def solve_coarse(coarse_op, coarse_heights):
-                return solve_contact(coarse_op, coarse_heights, mean_pressure=mean_pressure, approach=approach,
-                                     rtol=max(rtol, options.coarse_rtol), maxiter=maxiter,
-                                     raise_on_failure=False, options=options)
-            initial, coarse_matvecs, initial_approach = coarse_start(op, heights, solve_coarse,
-                                                                     options.coarsen_min_size)
+                return solve_contact(
+                    coarse_op,
+                    coarse_heights,
+                    mean_pressure=mean_pressure,
+                    approach=approach,
+                    rtol=max(rtol, options.coarse_rtol),
+                    maxiter=maxiter,
+                    raise_on_failure=False,
+                    options=options,
+                )
+
+            initial, coarse_matvecs, initial_approach = coarse_start(
+                op, heights, solve_coarse, options.coarsen_min_size
+            )
         sol = _retry_policy(op, heights, maxiter, dict(problem, initial=initial, initial_approach=initial_approach))
     if coarse_matvecs:
-        sol = replace(sol, matvecs=sol.matvecs + int(np.ceil(coarse_matvecs)),
-                      message=sol.message[:-1] + f" on this grid, plus {coarse_matvecs:.1f} on "
-                      "coarser grids counted at their share of points)")
+        sol = replace(
+            sol,
+            matvecs=sol.matvecs + int(np.ceil(coarse_matvecs)),
+            message=sol.message[:-1] + f" on this grid, plus {coarse_matvecs:.1f} on "
+            "coarser grids counted at their share of points)",
+        )
     if not sol.success and raise_on_failure:
         raise ConvergenceError(sol.message, sol)
     return sol
@@ -136,17 +155,27 @@ def _retry_policy(op, heights, maxiter, problem):
     o = problem["options"]
     careful = max_phase(op) > o.strong_phase
     if careful and o.lines and o.precondition is None and getattr(op, "factors_along_x", False):
-        lines = Attempt(maxiter=max(1, int(o.lines_maxiter_share * maxiter)), inner_eta=o.lines_eta,
-                        relax_inner=False, precondition="lines", residual_stall=o.residual_stall, guard=True)
+        lines = Attempt(
+            maxiter=max(1, int(o.lines_maxiter_share * maxiter)),
+            inner_eta=o.lines_eta,
+            relax_inner=False,
+            precondition="lines",
+            residual_stall=o.residual_stall,
+            guard=True,
+        )
         first = attempt_solve(op, heights, attempt=lines, **problem)
         if first.success or maxiter < 2:
             return first
         log.info("retrying without the line preconditioner: %s", first.message)
-        second = Attempt(maxiter=max(1, maxiter - first.iterations), inner_eta=o.inner_eta, relax_inner=False,
-                         guard=True)
+        second = Attempt(
+            maxiter=max(1, maxiter - first.iterations), inner_eta=o.inner_eta, relax_inner=False, guard=True
+        )
         return _after(first, attempt_solve(op, heights, attempt=second, **problem))
-    fast = Attempt(maxiter=maxiter if careful else math.ceil(o.fast_share * maxiter), inner_eta=o.inner_eta,
-                   relax_inner=not careful)
+    fast = Attempt(
+        maxiter=maxiter if careful else math.ceil(o.fast_share * maxiter),
+        inner_eta=o.inner_eta,
+        relax_inner=not careful,
+    )
     first = attempt_solve(op, heights, attempt=fast, **problem)
     if first.success or maxiter < 2 or careful:
         return first
@@ -157,9 +186,13 @@ def _retry_policy(op, heights, maxiter, problem):
 
 def _after(first, second):
     """The second attempt's solution, with the first attempt's work added to its counts."""
-    return replace(second, matvecs=first.matvecs + second.matvecs,
-                   iterations=first.iterations + second.iterations,
-                   message=second.message.replace(
-                       f"active-set iterations ({second.matvecs} operator products)",
-                       f"active-set iterations after a first attempt of {first.iterations} "
-                       f"({first.matvecs + second.matvecs} operator products in all)"))
+    return replace(
+        second,
+        matvecs=first.matvecs + second.matvecs,
+        iterations=first.iterations + second.iterations,
+        message=second.message.replace(
+            f"active-set iterations ({second.matvecs} operator products)",
+            f"active-set iterations after a first attempt of {first.iterations} "
+            f"({first.matvecs + second.matvecs} operator products in all)",
+        ),
+    )

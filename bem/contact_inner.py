@@ -18,6 +18,7 @@ Inner solves that stop far above single-precision round-off use the operator's f
 (``op.single_precision()``); each Newton point's displacement is recomputed in float64, so
 the solution keeps full accuracy.
 """
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -68,9 +69,11 @@ def restricted(apply, idx, shape, project, dtype=float):
 
 def projected(f):
     """``z -> P f(P z)`` with ``P`` the removal of the mean (the load constraint)."""
+
     def g(z):
         out = f(z - z.mean())
         return out - out.mean()
+
     return g
 
 
@@ -95,35 +98,42 @@ class InnerSolver:
         if self.op.is_symmetric:
             return krylov.cg(matvec, b, atol=atol, maxiter=self.maxiter, M=M)
         restart = krylov.restart_length(b.size, budget=o.restart_budget, low=o.restart_min, high=o.restart_max)
-        return krylov.gmres(matvec, b, atol=atol, maxiter=self.maxiter, M=M, restart=restart,
-                            reorthogonalise=o.reorthogonalise)
+        return krylov.gmres(
+            matvec, b, atol=atol, maxiter=self.maxiter, M=M, restart=restart, reorthogonalise=o.reorthogonalise
+        )
 
     def _preconditioner(self, work, contact, idx):
         """The preconditioner on this set (a counted map), or None."""
         pb, o = self.problem, self.options
         inverse = None
         if self.precondition == "lines":  # None where the dense line inverses would be too large
-            inverse = line_preconditioner(work, contact, cache=self.line_cache, budget=o.line_budget,
-                                          chunk=o.line_chunk, dtype=o.line_dtype)
+            inverse = line_preconditioner(
+                work, contact, cache=self.line_cache, budget=o.line_budget, chunk=o.line_chunk, dtype=o.line_dtype
+            )
             if inverse is not None and pb.load_control:
                 inverse = projected(inverse)
         elif self.precondition:
-            inverse = restricted(work.pressure_from_displacement, idx, pb.ht.shape, pb.load_control,
-                                 getattr(work, "dtype", float))
+            inverse = restricted(
+                work.pressure_from_displacement, idx, pb.ht.shape, pb.load_control, getattr(work, "dtype", float)
+            )
         if inverse is None:
             return None
 
         def M(r):
             self.matvecs += 1
             return inverse(r)
+
         return M
 
     def _atol(self, norm_b, n, eta):
         """Absolute inner tolerance; a repeated set (``eta == 0``) whose right-hand side is
         already under the floor would change nothing, so the floor tightens first."""
         o, final_atol = self.options, self.problem.final_atol
-        while eta == 0.0 and 0 < norm_b <= final_atol * np.sqrt(n) * self.tighten and (
-                np.sqrt(n) * self.tighten > o.atol_floor):
+        while (
+            eta == 0.0
+            and 0 < norm_b <= final_atol * np.sqrt(n) * self.tighten
+            and (np.sqrt(n) * self.tighten > o.atol_floor)
+        ):
             self.tighten *= o.inner_tighten
         return max(final_atol * max(np.sqrt(n) * self.tighten, o.atol_floor), eta * norm_b)
 

@@ -6,6 +6,7 @@ the merit ``||min(p, c g)||**2`` costs no operator product, since pressure, disp
 and gap are affine along the step. How an attempt steps, tightens and gives up is fixed by
 its :class:`Attempt`; the retry policy between attempts is in :mod:`bem.contact`.
 """
+
 import logging
 from dataclasses import dataclass
 
@@ -100,8 +101,15 @@ def problem_scales(op, heights, mean_pressure, approach, rtol, options, *, stron
     ptp = float(np.ptp(ht))
     if ptp > 0:  # between round-off of the heights and their range (see ContactOptions)
         h_ref = min(max(h_ref, options.gap_floor_share * ptp), ptp)
-    return Problem(ht=ht, load_control=load_control, approach=None if load_control else float(approach),
-                   p_ref=p_ref, h_ref=h_ref, c=1.0 / a0, final_atol=options.final_atol_share * rtol * h_ref)
+    return Problem(
+        ht=ht,
+        load_control=load_control,
+        approach=None if load_control else float(approach),
+        p_ref=p_ref,
+        h_ref=h_ref,
+        c=1.0 / a0,
+        final_atol=options.final_atol_share * rtol * h_ref,
+    )
 
 
 class ActiveSet:
@@ -150,8 +158,16 @@ class ActiveSet:
         t = 1.0
         if changed and self.damped:
             full = residual_new <= self.residual or not self.attempt.guard
-            t = line_search(self.p, self.g, p_new, g_new, self.pb.c, full=full,
-                            decrease=self.o.search_decrease, halvings=self.o.search_halvings)
+            t = line_search(
+                self.p,
+                self.g,
+                p_new,
+                g_new,
+                self.pb.c,
+                full=full,
+                decrease=self.o.search_decrease,
+                halvings=self.o.search_halvings,
+            )
         self.ascents = self.ascents + 1 if residual_new > self.residual else 0
         self.damped = self.damped or self.ascents >= self.o.ascents
         return t
@@ -196,8 +212,15 @@ class ActiveSet:
         if not changed and self.residual > self.o.stall_ratio * previous:
             self.inner.tighten *= self.o.inner_tighten  # settled but stalled: inner accuracy too low
         if log.isEnabledFor(logging.DEBUG):
-            log.debug("active set %d: %d changes, step %.3g, residual %.3e, contact %.4f, %d products",
-                      self.outer, changed, t, self.residual, np.mean(self.p > 0), self.inner.matvecs)
+            log.debug(
+                "active set %d: %d changes, step %.3g, residual %.3e, contact %.4f, %d products",
+                self.outer,
+                changed,
+                t,
+                self.residual,
+                np.mean(self.p > 0),
+                self.inner.matvecs,
+            )
 
     def run(self):
         while self._go_on():
@@ -207,14 +230,16 @@ class ActiveSet:
             p *= self.pb.p_ref * p.size / p.sum()
         success = self.residual <= self.rtol
         state, rel = ("converged", "<=") if success else ("not converged", ">")
-        message = (f"{state}: complementarity residual {self.residual:.2e} {rel} rtol {self.rtol:.1e} after "
-                   f"{self.outer} active-set iterations ({self.inner.matvecs} operator products)")
-        return ContactSolution(p, self.u, self.g, self.delta, self.outer, self.inner.matvecs, self.residual,
-                               success, message)
+        message = (
+            f"{state}: complementarity residual {self.residual:.2e} {rel} rtol {self.rtol:.1e} after "
+            f"{self.outer} active-set iterations ({self.inner.matvecs} operator products)"
+        )
+        return ContactSolution(
+            p, self.u, self.g, self.delta, self.outer, self.inner.matvecs, self.residual, success, message
+        )
 
 
-def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, options, initial=None,
-                  initial_approach=None):
+def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, options, initial=None, initial_approach=None):
     """One attempt of the active-set iteration (never raises; see :class:`Attempt`)."""
     strongly_nonsymmetric = max_phase(op) > options.strong_phase
     pb = problem_scales(op, heights, mean_pressure, approach, rtol, options, strong=strongly_nonsymmetric)
@@ -226,17 +251,32 @@ def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, option
     inner = InnerSolver(op, pb, precondition, options)
 
     def solve_symmetric():  # a robust CG solve that puts the set near its place
-        sym = Attempt(maxiter=attempt.maxiter, inner_eta=options.inner_eta, precondition=False,
-                      stop_when_cycling=True)
-        return attempt_solve(op.symmetric_part(), heights, mean_pressure=mean_pressure, approach=approach,
-                             rtol=max(rtol, options.symmetric_start_rtol), attempt=sym, options=options)
+        sym = Attempt(maxiter=attempt.maxiter, inner_eta=options.inner_eta, precondition=False, stop_when_cycling=True)
+        return attempt_solve(
+            op.symmetric_part(),
+            heights,
+            mean_pressure=mean_pressure,
+            approach=approach,
+            rtol=max(rtol, options.symmetric_start_rtol),
+            attempt=sym,
+            options=options,
+        )
 
     p, contact, inner.matvecs = first_iterate(
-        op, pb, initial=initial, initial_approach=initial_approach, solve_symmetric=solve_symmetric,
-        symmetric_start=wants_symmetric_start(op, pb.ht, strongly_nonsymmetric, options), options=options)
+        op,
+        pb,
+        initial=initial,
+        initial_approach=initial_approach,
+        solve_symmetric=solve_symmetric,
+        symmetric_start=wants_symmetric_start(op, pb.ht, strongly_nonsymmetric, options),
+        options=options,
+    )
     it = ActiveSet(op, pb, inner, attempt, rtol, options)
     it.start(p, contact)
     if not pb.load_control and it.p.mean() > 0:  # displacement control: now the mean pressure is known
-        it.rescale(problem_scales(op, heights, mean_pressure, approach, rtol, options, strong=strongly_nonsymmetric,
-                                  p_mean=it.p.mean()))
+        it.rescale(
+            problem_scales(
+                op, heights, mean_pressure, approach, rtol, options, strong=strongly_nonsymmetric, p_mean=it.p.mean()
+            )
+        )
     return it.run()

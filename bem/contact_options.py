@@ -5,6 +5,7 @@ benchmark (rough self-affine surfaces at about 10 % contact: elastic, a standard
 and a 20-term rubber with ``E_inf/E0 = 1000``), the 32² robustness sweep and the isolated
 rolling cylinders of the validation. Variants are made with :func:`dataclasses.replace`.
 """
+
 import math
 from dataclasses import dataclass, fields
 
@@ -16,25 +17,57 @@ __all__ = ["ContactOptions"]
 
 # (low, high, low inclusive) of every numeric field; booleans and ``precondition`` are checked apart
 _RANGES = {
-    "inner_eta": (0.0, 1.0, False), "inner_eta_min": (0.0, 1.0, False), "gap_scale": (0.0, math.inf, False),
-    "gap_scale_strong": (0.0, math.inf, False), "gap_floor_share": (0.0, 1.0, True), "inner_relax": (1.0, math.inf, True),
-    "inner_tighten": (0.0, 1.0, False), "inner_maxiter_per_sqrt_n": (0.0, math.inf, True),
-    "inner_maxiter_base": (0, math.inf, True), "final_atol_share": (0.0, 1.0, False),
-    "atol_floor": (0.0, 1.0, False), "stall_ratio": (0.0, 1.0, False),
-    "tighten_changes": (0, math.inf, True), "tighten_share": (0.0, 1.0, True),
-    "strong_phase": (0.0, math.pi / 2, True), "precondition_min_size": (1, math.inf, True),
-    "single_precision_rtol": (0.0, 1.0, False), "near_full_contact": (0.0, 1.0, True),
-    "symmetric_start_rtol": (0.0, 1.0, False), "stall_limit": (1, math.inf, True),
-    "ascents": (1, math.inf, True), "search_decrease": (0.0, 1.0, True), "search_halvings": (1, 60, True),
-    "fast_share": (0.0, 1.0, False), "lines_eta": (0.0, 1.0, False), "residual_stall": (0, math.inf, True),
-    "lines_maxiter_share": (0.0, 1.0, False), "line_budget": (0, math.inf, True), "line_chunk": (1, math.inf, True),
-    "coarsen_min_size": (4, math.inf, True), "coarse_rtol": (0.0, 1.0, False),
-    "restart_budget": (1, math.inf, True), "restart_min": (1, math.inf, True), "restart_max": (1, math.inf, True),
+    "inner_eta": (0.0, 1.0, False),
+    "inner_eta_min": (0.0, 1.0, False),
+    "gap_scale": (0.0, math.inf, False),
+    "gap_scale_strong": (0.0, math.inf, False),
+    "gap_floor_share": (0.0, 1.0, True),
+    "inner_relax": (1.0, math.inf, True),
+    "inner_tighten": (0.0, 1.0, False),
+    "inner_maxiter_per_sqrt_n": (0.0, math.inf, True),
+    "inner_maxiter_base": (0, math.inf, True),
+    "final_atol_share": (0.0, 1.0, False),
+    "atol_floor": (0.0, 1.0, False),
+    "stall_ratio": (0.0, 1.0, False),
+    "tighten_changes": (0, math.inf, True),
+    "tighten_share": (0.0, 1.0, True),
+    "strong_phase": (0.0, math.pi / 2, True),
+    "precondition_min_size": (1, math.inf, True),
+    "single_precision_rtol": (0.0, 1.0, False),
+    "near_full_contact": (0.0, 1.0, True),
+    "symmetric_start_rtol": (0.0, 1.0, False),
+    "stall_limit": (1, math.inf, True),
+    "ascents": (1, math.inf, True),
+    "search_decrease": (0.0, 1.0, True),
+    "search_halvings": (1, 60, True),
+    "fast_share": (0.0, 1.0, False),
+    "lines_eta": (0.0, 1.0, False),
+    "residual_stall": (0, math.inf, True),
+    "lines_maxiter_share": (0.0, 1.0, False),
+    "line_budget": (0, math.inf, True),
+    "line_chunk": (1, math.inf, True),
+    "coarsen_min_size": (4, math.inf, True),
+    "coarse_rtol": (0.0, 1.0, False),
+    "restart_budget": (1, math.inf, True),
+    "restart_min": (1, math.inf, True),
+    "restart_max": (1, math.inf, True),
     "reorthogonalise": (0.0, 1.0, True),
 }
-_INTEGERS = {"inner_maxiter_base", "tighten_changes", "precondition_min_size", "stall_limit", "ascents",
-             "search_halvings", "residual_stall", "line_budget", "line_chunk", "coarsen_min_size",
-             "restart_budget", "restart_min", "restart_max"}
+_INTEGERS = {
+    "inner_maxiter_base",
+    "tighten_changes",
+    "precondition_min_size",
+    "stall_limit",
+    "ascents",
+    "search_halvings",
+    "residual_stall",
+    "line_budget",
+    "line_chunk",
+    "coarsen_min_size",
+    "restart_budget",
+    "restart_min",
+    "restart_max",
+}
 
 
 @dataclass(frozen=True)
@@ -144,8 +177,7 @@ class ContactOptions:
             elif not isinstance(value, bool):
                 raise InputError(f"options.{f.name} must be True or False, got {value!r}")
         if self.restart_min > self.restart_max:
-            raise InputError(f"options.restart_min must be <= restart_max = {self.restart_max}, "
-                             f"got {self.restart_min}")
+            raise InputError(f"options.restart_min must be <= restart_max = {self.restart_max}, got {self.restart_min}")
 
 
 def _check_number(name, value, low, high, closed):

@@ -15,6 +15,7 @@ In order of preference:
 4. the operator's own first iterate (``op.initial_pressure``, isolated half-spaces);
 5. the full-contact solution (exact in Fourier space) clipped to ``p >= 0``.
 """
+
 import logging
 
 import numpy as np
@@ -91,8 +92,7 @@ def _start_pressure(op, pb, initial, symmetric_start, solve_symmetric, options):
         initial, matvecs = sym.pressure, sym.matvecs
     if initial is None and hasattr(op, "initial_pressure"):
         # operators without an exact full-contact inverse supply their own first iterate
-        initial = op.initial_pressure(pb.ht, mean_pressure=pb.p_ref if pb.load_control else None,
-                                      approach=pb.approach)
+        initial = op.initial_pressure(pb.ht, mean_pressure=pb.p_ref if pb.load_control else None, approach=pb.approach)
     if initial is None:
         return _full_contact_start(op, pb), matvecs, False
     return np.maximum(np.asarray(initial, dtype=float), 0.0), matvecs, True

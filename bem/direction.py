@@ -33,6 +33,7 @@ its steady state discontinuously there, as the model of an infinitely long stead
 Friction along ``d``: ``mu = -(1/F_N) ∫ p du/ds dA`` (dissipation form, the force opposing the
 motion over the load) and ``mu_eq6 = -(1/F_N) ∫ p dh/ds dA``, with ``s`` the arc length along ``d``.
 """
+
 import dataclasses
 import math
 
@@ -44,8 +45,21 @@ from .checks import check_positive
 from .errors import ConvergenceError, InputError
 from .periodic import PeriodicHalfSpace
 
-__all__ = ["DirectedPeriodicHalfSpace", "directed_operator", "eq6", "normalize", "operator", "plan",
-           "quarter_turns", "solve_turned", "turn_array", "turn_back", "turn_surface", "unit_vector"]
+__all__ = [
+    "DirectedPeriodicHalfSpace",
+    "directed_operator",
+    "eq6",
+    "normalize",
+    "operator",
+    "plan",
+    "quarter_turns",
+    "solve_turned",
+    "turn_array",
+    "turn_back",
+    "turn_surface",
+    "unit_vector",
+]
+
 
 def normalize(direction, ndim):
     """``direction`` (radians) reduced to ``[0, 2 pi)``; profiles accept only ``0`` and ``pi``."""
@@ -58,8 +72,9 @@ def normalize(direction, ndim):
     theta = theta % (2 * math.pi)
     k = quarter_turns(theta)
     if ndim == 1 and k not in (0, 2):
-        raise InputError(f"direction must be 0 or pi (radians) for a 1-D profile (it slides along its own "
-                         f"axis), got {direction!r}")
+        raise InputError(
+            f"direction must be 0 or pi (radians) for a 1-D profile (it slides along its own axis), got {direction!r}"
+        )
     return 0.0 if k == 0 else (k * math.pi / 2 if k is not None else theta)
 
 
@@ -120,8 +135,7 @@ class DirectedPeriodicHalfSpace(PeriodicHalfSpace):
         c, s = unit_vector(self.direction)
         qx, qy = fft.wavevectors(self.shape, self.length)
         self._creep = None
-        self._qx = np.broadcast_to(_alias_mean(lambda a, b: a * c + b * s, qx, qy, self.shape),
-                                   self.symbol.shape)
+        self._qx = np.broadcast_to(_alias_mean(lambda a, b: a * c + b * s, qx, qy, self.shape), self.symbol.shape)
         if material.is_elastic or self.speed == 0.0:
             return
         v = self.speed
@@ -151,8 +165,9 @@ class DirectedPeriodicHalfSpace(PeriodicHalfSpace):
         """The same operator on the grid with half the points per axis (even sides only)."""
         if any(n % 2 for n in self.shape):
             raise ValueError(f"coarsening needs even grid sides, got {self.shape}")
-        coarse = DirectedPeriodicHalfSpace(tuple(n // 2 for n in self.shape), self.length, self.material,
-                                           self.speed, self.direction)
+        coarse = DirectedPeriodicHalfSpace(
+            tuple(n // 2 for n in self.shape), self.length, self.material, self.speed, self.direction
+        )
         return coarse.symmetric_part() if self.__dict__.get("_symmetric_part") else coarse
 
     def _twin(self, *stale):
@@ -183,8 +198,10 @@ def plan(direction, ndim, periodic=True, method="auto"):
     theta = normalize(direction, ndim)
     turns = quarter_turns(theta)
     if turns is None and not periodic and method == "adaptive":
-        raise InputError(f"direction must be a multiple of pi/2 (radians) with method='adaptive' (its mesh "
-                         f"kernels shift along x only; use method='uniform' for oblique directions), got {direction!r}")
+        raise InputError(
+            f"direction must be a multiple of pi/2 (radians) with method='adaptive' (its mesh "
+            f"kernels shift along x only; use method='uniform' for oblique directions), got {direction!r}"
+        )
     return theta, turns
 
 
@@ -202,11 +219,14 @@ def solve_turned(solve, surface, material, turns, *, initial=None, **options):
     A :class:`bem.errors.ConvergenceError` carries the turned-back result too.
     """
     if options.get("height") is not None:
-        raise InputError("direction must be 0 with an exact height function (height=...): the function is "
-                         "given in the surface's frame; turn the surface instead")
+        raise InputError(
+            "direction must be 0 with an exact height function (height=...): the function is "
+            "given in the surface's frame; turn the surface instead"
+        )
     try:
-        result = solve(turn_surface(surface, turns), material, initial=turn_array(initial, turns),
-                       direction=0.0, **options)
+        result = solve(
+            turn_surface(surface, turns), material, initial=turn_array(initial, turns), direction=0.0, **options
+        )
     except ConvergenceError as err:
         if err.result is not None:
             err.result = turn_back(err.result, turns)

@@ -20,6 +20,7 @@ Gauss–Legendre on every piece (see :func:`_breakpoints`). All terms
 share the nodes (only the weights differ). The accuracy is measured in the tests against the
 exact-shift x-quadrature of :func:`bem.influence.square_creep_sum` run along ``+x`` and ``+y``.
 """
+
 import numpy as np
 import scipy.fft as sfft
 
@@ -37,7 +38,7 @@ def _ladder(points, scale, top):
     """Breakpoints ``points ± scale * 4**j`` (``j`` from ``lowest`` up to the ray's end ``top``),
     rows of ``points`` (``(M, k)``) and ``scale`` (``(M, 1)`` or a number)."""
     j = np.arange(-6, int(np.ceil(np.log(top / np.min(scale)) / np.log(4))) + 1)
-    steps = np.asarray(scale, dtype=float)[..., None] * 4.0 ** j
+    steps = np.asarray(scale, dtype=float)[..., None] * 4.0**j
     out = (points[:, :, None] + np.concatenate([-steps, steps], axis=-1)).reshape(len(points), -1)
     return np.concatenate([points, out], axis=1)
 
@@ -63,8 +64,9 @@ def _breakpoints(x, y, c, s, h, shifts, near):
         pts.append(_ladder(np.stack(cross, axis=1), h, top))
     pts = np.concatenate(pts, axis=1)
     pts = np.where((pts > 0) & (pts < top), pts, 0.0)
-    return np.sort(np.concatenate([np.broadcast_to(fixed[fixed <= top], (len(x), fixed[fixed <= top].size)), pts],
-                                  axis=1), axis=1)
+    return np.sort(
+        np.concatenate([np.broadcast_to(fixed[fixed <= top], (len(x), fixed[fixed <= top].size)), pts], axis=1), axis=1
+    )
 
 
 def _ray_integrals(x, y, c, s, width, shifts, weights, near, rule):
@@ -75,7 +77,7 @@ def _ray_integrals(x, y, c, s, width, shifts, weights, near, rule):
     gl_x, gl_w = rule
     rows = max(1, _CHUNK // (gl_x.size * probe))
     for a in range(0, x.size, rows):
-        xb, yb = x[a:a + rows], y[a:a + rows]
+        xb, yb = x[a : a + rows], y[a : a + rows]
         edges = _breakpoints(xb, yb, c, s, width / 2, shifts, near)
         lo, hi = edges[:, :-1, None], edges[:, 1:, None]
         t = 0.5 * (hi - lo) * (gl_x + 1) + lo  # (rows, pieces, nodes)
@@ -83,8 +85,8 @@ def _ray_integrals(x, y, c, s, width, shifts, weights, near, rule):
         vals = influence.square_elastic(xb[:, None, None] + c * t, yb[:, None, None] + s * t, width) * dt
         for L, wk in zip(shifts, weights):
             i_k = np.sum(vals * np.exp(-t / L), axis=(1, 2)) / L
-            total[0, a:a + rows] += wk * i_k
-            total[1, a:a + rows] += wk * (i_k - g[a:a + rows]) / L
+            total[0, a : a + rows] += wk * i_k
+            total[1, a : a + rows] += wk * (i_k - g[a : a + rows]) / L
     return total
 
 
@@ -135,7 +137,7 @@ class DirectedIsolatedHalfSpace(IsolatedHalfSpace):
         elastic = material.is_elastic or speed == 0.0
         comp_el = 1.0 / (material.E0 if elastic else material.E_inf)
         terms = []
-        for ck, lk in ([] if elastic else zip(material.compliances, material.creep_times)):
+        for ck, lk in [] if elastic else zip(material.compliances, material.creep_times):
             if speed * lk < _FOLD * d:
                 comp_el += ck
             elif speed * lk <= self.length / _FOLD:

@@ -14,6 +14,7 @@ partner: a Fourier multiplier there must be real (see :func:`hermitian_multiplie
 
 Transforms use :func:`bem.parallel.get_threads` threads (every core unless set otherwise).
 """
+
 import numpy as np
 import scipy.fft as sfft
 

@@ -1,6 +1,7 @@
 """Rigid indenters for isolated contacts: the sphere (2-D map) and the cylinder (1-D profile,
 plane strain), on element centres of a domain centred on their axis.
 """
+
 import numpy as np
 
 from .checks import check_int, check_positive, show
@@ -21,8 +22,10 @@ def _indenter(radius, n, length, exact, dim, kind):
     reach = np.sqrt(dim) * length / 2  # farthest domain point from the axis
     if exact and not reach < radius:
         limit = "2 radius" if dim == 1 else "sqrt(2) radius"
-        raise InputError(f"length must be < {limit} = {show(2 * radius / np.sqrt(dim))} m for the exact "
-                         f"{kind} (the domain must lie under the {kind}), got {show(length)}")
+        raise InputError(
+            f"length must be < {limit} = {show(2 * radius / np.sqrt(dim))} m for the exact "
+            f"{kind} (the domain must lie under the {kind}), got {show(length)}"
+        )
     x = (np.arange(n) + 0.5) * (length / n) - length / 2
     r2 = x**2 if dim == 1 else x[:, None] ** 2 + x[None, :] ** 2
     heights = np.sqrt(radius**2 - r2) - radius if exact else -r2 / (2.0 * radius)

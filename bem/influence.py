@@ -12,22 +12,30 @@ into the solid.
 - Squares (2-D surfaces, 3-D half-space), side ``w``: ``u(x, y) = (1/pi) ∫∫ p / r dA``,
   Love's closed form (A.E.H. Love, Phil. Trans. R. Soc. A 228 (1929) 377,
   doi:10.1098/rsta.1929.0009) written with the signed corner function
-  ``f(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|)``, valid in all four quadrants (SPEC §7).
+  ``f(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|)``, valid in all four quadrants (docs/theory.md §12).
 
-Steady sliding (SPEC §2.2): a creep term of time ``lambda`` at speed ``v`` contributes
+Steady sliding (docs/theory.md §3): a creep term of time ``lambda`` at speed ``v`` contributes
 ``C ∫_0^inf exp(-z) G(x + L z) dz`` with ``L = v lambda`` (the displacement at ``x`` is
 the memory of the elastic field that the material point saw ahead of ``x``). For strips this
 has a closed form with exponential integrals, written relative to ``ln(L) - gamma_Euler``
 (the dropped part is a constant, absorbed by the rigid approach) and with power series
-near the origin, so nothing cancels at large ``L`` (SPEC §7). For squares it is a
+near the origin, so nothing cancels at large ``L`` (docs/theory.md §12). For squares it is a
 quadrature along ``x`` at the shifted (off-grid) points, see :func:`square_creep`.
 """
+
 import numpy as np
 from scipy import special
 from scipy.linalg import eigh_tridiagonal
 
-__all__ = ["strip_elastic", "strip_creep", "square_elastic", "square_creep", "square_creep_sum", "love_corner",
-           "log_antiderivative"]
+__all__ = [
+    "strip_elastic",
+    "strip_creep",
+    "square_elastic",
+    "square_creep",
+    "square_creep_sum",
+    "love_corner",
+    "log_antiderivative",
+]
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 _GLAG_X, _GLAG_W = np.polynomial.laguerre.laggauss(10)  # nodes <= 30: inside 40 shift
@@ -45,7 +53,9 @@ def log_antiderivative(t):
 def strip_elastic(x, width, ell):
     """Elastic strip coefficient (m/Pa at ``E* = 1``) at offsets ``x`` (m) from its centre."""
     x = np.asarray(x, dtype=float)
-    return -(2.0 / np.pi) * ell * (log_antiderivative((x + width / 2) / ell) - log_antiderivative((x - width / 2) / ell))
+    return (
+        -(2.0 / np.pi) * ell * (log_antiderivative((x + width / 2) / ell) - log_antiderivative((x - width / 2) / ell))
+    )
 
 
 def _series_coefficients(terms=40):
@@ -90,7 +100,9 @@ def _capital_phi(a):
     if np.any(big):
         s = a[big]
         k = np.arange(30)
-        psi[big] = np.log(np.abs(s)) + np.sum((-1.0) ** k * special.factorial(k) * (1.0 / s[:, None]) ** (k + 1), axis=1)
+        psi[big] = np.log(np.abs(s)) + np.sum(
+            (-1.0) ** k * special.factorial(k) * (1.0 / s[:, None]) ** (k + 1), axis=1
+        )
     large = ~small
     s = a[large]
     out[large] = psi[large] + g + s * (np.log(np.abs(s)) - 1.0 + g)
@@ -135,8 +147,12 @@ def square_elastic(x, y, width):
         out[far] = width**2 / rf * (1.0 + width**2 / (24.0 * rf**2)) / np.pi
     near = ~far
     xn, yn = x[near], y[near]
-    out[near] = (love_corner(xn + h, yn + h) - love_corner(xn + h, yn - h) - love_corner(xn - h, yn + h)
-                 + love_corner(xn - h, yn - h)) / np.pi
+    out[near] = (
+        love_corner(xn + h, yn + h)
+        - love_corner(xn + h, yn - h)
+        - love_corner(xn - h, yn + h)
+        + love_corner(xn - h, yn - h)
+    ) / np.pi
     return out
 
 
@@ -269,7 +285,7 @@ def square_creep_sum(n, width, shifts, weights):
     most = max([t_sh.size] + [o[2].size for o in own])
     chunk = max(1, 2**21 // (s.size * most))  # rows per block: bounded memory
     for j0 in range(0, n, chunk):
-        yy = y[j0:j0 + chunk]
+        yy = y[j0 : j0 + chunk]
         rows = slice(j0, j0 + yy.size)
         if w_sh:
             vals = square_elastic(s[:-1, None, None] + t_sh[None, :, None], yy[None, None, :], width)

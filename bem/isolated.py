@@ -1,6 +1,6 @@
 """Isolated (non-periodic) viscoelastic half-space under steady sliding: the response operator.
 
-Conventions (SPEC §2.2, §2.3; SI units) as in :mod:`bem.periodic`: the indenter moves with
+Conventions (docs/theory.md §3, §4; SI units) as in :mod:`bem.periodic`: the indenter moves with
 speed ``v`` in ``+x`` (axis 0), material points travel in ``-x``; pressure ``p`` (Pa) is
 compressive positive, displacement ``u`` (m) positive into the solid. The domain is the
 user's array: ``n`` elements per side of width ``d = length / n``, each carrying a uniform
@@ -9,7 +9,7 @@ pressure; pressure outside the domain is zero. ``u`` is collocated at element ce
     u_i = sum_j K(x_i - x_j) p_j,
     K = (1 - nu**2) [G / E_inf + sum_k C_k ∫_0^inf exp(-z) G(. + v lambda_k z) dz],
 
-(SPEC §5: creep terms with ``v lambda_k < 1e-6 d`` act as fully relaxed and join the elastic
+(docs/theory.md §11: creep terms with ``v lambda_k < 1e-6 d`` act as fully relaxed and join the elastic
 term; those with ``v lambda_k > 1e6 length`` add only a constant and are dropped; both
 errors are ``O(1e-6)`` relative), with ``G`` the influence coefficient of one element at
 ``E* = 1`` (:mod:`bem.influence`:
@@ -24,6 +24,7 @@ of ``M >= 2n - 1`` points per axis (``scipy.fft.next_fast_len``), kernel entry o
 ``i`` stored at ``i mod M``; real FFTs along the last axis on :func:`bem.parallel.get_threads` threads. Exact: no
 periodic images.
 """
+
 import numpy as np
 import scipy.fft as sfft
 
@@ -59,7 +60,7 @@ def _offset_kernels(shape, length, material, speed):
     elastic = material.is_elastic or speed == 0.0
     comp_el = 1.0 / (material.E0 if elastic else material.E_inf)
     terms = []
-    for ck, lk in ([] if elastic else zip(material.compliances, material.creep_times)):
+    for ck, lk in [] if elastic else zip(material.compliances, material.creep_times):
         if speed * lk < _FOLD * d:  # fully relaxed over one element: C_k G (error O(v lambda / d))
             comp_el += ck
         elif speed * lk <= length / _FOLD:  # else glassy over the domain: a constant plus O(length / v lambda)
@@ -76,7 +77,7 @@ def _offset_kernels(shape, length, material, speed):
             slope = slope + ck / L * (creep - (2 / np.pi) * d * (np.log(L / length) - np.euler_gamma) - g)
     else:
         y = d * np.arange(n)
-        g = influence.square_elastic(x[n - 1:, None], y[None, :], d)  # x >= 0 half, mirrored below
+        g = influence.square_elastic(x[n - 1 :, None], y[None, :], d)  # x >= 0 half, mirrored below
         kernel, slope = comp_el * g, np.zeros_like(g)
         full = lambda a: np.concatenate([a[:0:-1], a], axis=0)  # noqa: E731  (G is even in x)
         kernel, slope, g = full(kernel), full(slope), full(g)

@@ -13,6 +13,7 @@ corrections, so a warm start is already in its right-hand side.
   modified Gram–Schmidt and uses matrix–vector BLAS calls) for the non-symmetric but positive-real steady-sliding operator: its symmetric part has the
   symbol ``Re a_q > 0``, so the field of values excludes 0 and GMRES converges.
 """
+
 import numpy as np
 
 TWICE_IS_ENOUGH = 1 / np.sqrt(2)  # default share for a second Gram–Schmidt pass (Kahan–Parlett)

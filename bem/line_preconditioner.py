@@ -19,6 +19,7 @@ well conditioned, so the preconditioner changes by ~1e-7 relative, far below the
 solves' tolerance, while its memory traffic halves. Lines are formed in batches of ``chunk``
 (sorted by length, padded with the identity), inverted and applied on the FFT's cores.
 """
+
 import os
 from concurrent.futures import ThreadPoolExecutor
 
@@ -51,7 +52,7 @@ def _run(func, items):
 def _chunks(order, chunk):
     """``order`` (line numbers sorted by size) cut into batches of ``chunk``."""
     order = list(order)
-    return [np.array(order[i: i + chunk]) for i in range(0, len(order), chunk)]
+    return [np.array(order[i : i + chunk]) for i in range(0, len(order), chunk)]
 
 
 def _line_matrices(kernel, x, valid):
@@ -74,7 +75,7 @@ def _batches(idx, n1, cache, chunk, dtype):
     xs, ys = np.divmod(idx, n1)
     order = np.lexsort((xs, ys))  # by line (y), then along it (x)
     lines, starts, counts = np.unique(ys[order], return_index=True, return_counts=True)
-    positions = [order[a: a + c] for a, c in zip(starts, counts)]  # in idx, along x
+    positions = [order[a : a + c] for a, c in zip(starts, counts)]  # in idx, along x
     keys = [xs[pos].tobytes() for pos in positions]
     xs_padded = np.append(xs, 0)  # read through ``pos``, whose padding is idx.size
     kept, blocks, jobs = {}, [], []

@@ -82,9 +82,7 @@ class MasterCurveReport(FitReport):
             log_shift=list(self.log_shift),
             law_log_shift=list(self.law_log_shift),
             law_rms=self.law_rms,
-            law={"name": type(self.law).__name__, **vars(self.law)}
-            if self.law is not None
-            else None,
+            law={"name": type(self.law).__name__, **vars(self.law)} if self.law is not None else None,
         )
         return out
 
@@ -221,9 +219,7 @@ def _check_inputs(frequencies, temperatures, storage, loss, hz):
     if T.shape != w.shape:
         raise InputError(f"temperatures must have one entry per frequency ({w.size}), got {T.size}")
     if np.any(e2 <= 0):
-        raise InputError(
-            "loss must be > 0 Pa everywhere for a master curve (its logarithm is shifted)"
-        )
+        raise InputError("loss must be > 0 Pa everywhere for a master curve (its logarithm is shifted)")
     return w, T, e1, e2
 
 
@@ -256,15 +252,11 @@ def fit_master_curve(
     min_overlap = check_range("min_overlap", min_overlap, 0.0, 1.0)
     label, temps = segments(T, tol)
     if temps.size < 3:
-        raise InputError(
-            f"master curve needs sweeps at >= 3 temperatures (to fit a law), got {temps.size}"
-        )
+        raise InputError(f"master curve needs sweeps at >= 3 temperatures (to fit a law), got {temps.size}")
     lw, l1, l2 = np.log10(w), np.log10(e1), np.log10(e2)
     segs = [_Segment(lw[label == k], l1[label == k], l2[label == k]) for k in range(temps.size)]
     log_a = _anchor(temps, chain_shifts(segs, min_overlap, reach, max_mismatch, temps), tref)
-    taus = default_times(
-        np.concatenate([w * 10.0 ** log_a.min(), w * 10.0 ** log_a.max()]), terms_per_decade
-    )
+    taus = default_times(np.concatenate([w * 10.0 ** log_a.min(), w * 10.0 ** log_a.max()]), terms_per_decade)
     law = LAWS[shift](temps, log_a, tref)
     E0, moduli, times, rep = fit_prony_series(w * 10.0 ** law(T), e1, e2, taus, smoothing=smoothing)
     law_a = law(temps)

@@ -125,9 +125,7 @@ class Material:
         E0 = check_positive("E0", E0)
         E_inf = check_positive("E_inf", E_inf)
         if not E_inf > E0:
-            raise InputError(
-                f"E_inf must be > E0 = {E0!r} Pa (glassy stiffer than relaxed), got {E_inf!r}"
-            )
+            raise InputError(f"E_inf must be > E0 = {E0!r} Pa (glassy stiffer than relaxed), got {E_inf!r}")
         if (relaxation_time is None) == (creep_time is None):
             raise InputError("give exactly one of relaxation_time or creep_time (s)")
         if relaxation_time is not None:
@@ -144,9 +142,7 @@ class Material:
         ``moduli[k]`` stays paired with ``times[k]``, and two materials with the same terms in
         different orders are equal.
         """
-        return cls(
-            E0, check_array("moduli", moduli, ndim=1), check_array("times", times, ndim=1), nu
-        )
+        return cls(E0, check_array("moduli", moduli, ndim=1), check_array("times", times, ndim=1), nu)
 
     @classmethod
     def from_creep(cls, *, E0, compliances, times, nu=0.5):
@@ -154,29 +150,17 @@ class Material:
         E0 = check_positive("E0", E0)
         Ck, lk = _check_series("compliances", compliances, "1/Pa", times)
         if not Ck.size:
-            raise InputError(
-                "compliances must have at least 1 entry (use Material.elastic for none)"
-            )
+            raise InputError("compliances must have at least 1 entry (use Material.elastic for none)")
         if not Ck.sum() < 1.0 / E0:
             raise InputError(
-                f"compliances must sum to < 1/E0 = {1 / E0!r} 1/Pa (so that E_inf is finite), "
-                f"got {Ck.sum()!r}"
+                f"compliances must sum to < 1/E0 = {1 / E0!r} 1/Pa (so that E_inf is finite), got {Ck.sum()!r}"
             )
         Ek, tk = creep_to_prony(E0, Ck, lk)
         return cls(E0, Ek, tk, nu)
 
     @classmethod
     def fit_prony(
-        cls,
-        frequencies,
-        storage,
-        loss,
-        *,
-        times=None,
-        terms_per_decade=3.0,
-        hz=False,
-        nu=0.5,
-        smoothing=0.0,
+        cls, frequencies, storage, loss, *, times=None, terms_per_decade=3.0, hz=False, nu=0.5, smoothing=0.0
     ):
         """Fit a non-negative Prony series to DMA data (a master curve), in relative error.
 
@@ -214,9 +198,7 @@ class Material:
             taus = default_times(w, terms_per_decade)
         else:
             taus = check_array("times", times, ndim=1, positive=True)
-        E0, moduli, taus, report = fit_prony_series(
-            w, e1, e2, taus, smoothing=smoothing, refine=times is None
-        )
+        E0, moduli, taus, report = fit_prony_series(w, e1, e2, taus, smoothing=smoothing, refine=times is None)
         return cls(E0, moduli, taus, nu, fit_report=report)
 
     @classmethod
@@ -298,16 +280,11 @@ class Material:
         the moduli and compliances are unchanged and the times scale by one rounding each.
         """
         if not callable(shift):
-            raise InputError(
-                f"shift must be a callable giving log10 a_T(T) (e.g. bem.temperature.WLF), "
-                f"got {shift!r}"
-            )
+            raise InputError(f"shift must be a callable giving log10 a_T(T) (e.g. bem.temperature.WLF), got {shift!r}")
         T = check_positive("T (K, absolute)", T)
         factor = 10.0 ** float(shift(T))
         if not (np.isfinite(factor) and factor > 0):
-            raise InputError(
-                f"shift factor a_T at T = {T!r} K must be finite and > 0, got {factor!r}"
-            )
+            raise InputError(f"shift factor a_T at T = {T!r} K must be finite and > 0, got {factor!r}")
         out = Material(self.E0, self.moduli, self.relaxation_times * factor, self.nu)
         creep = self.creep_times * factor
         creep.setflags(write=False)
@@ -335,23 +312,17 @@ class Material:
     def complex_compliance(self, w):
         """``J*(w) = 1 / E*(w)`` (1/Pa) from the creep series."""
         w = np.asarray(w, dtype=float)
-        return 1.0 / self.E_inf + np.sum(
-            self.compliances / (1.0 + 1j * w[..., None] * self.creep_times), axis=-1
-        )
+        return 1.0 / self.E_inf + np.sum(self.compliances / (1.0 + 1j * w[..., None] * self.creep_times), axis=-1)
 
     def creep_compliance(self, t):
         """``J(t)`` (1/Pa) for ``t >= 0`` (s): strain under a unit step stress."""
         t = np.asarray(t, dtype=float)
-        return 1.0 / self.E0 - np.sum(
-            self.compliances * np.exp(-t[..., None] / self.creep_times), axis=-1
-        )
+        return 1.0 / self.E0 - np.sum(self.compliances * np.exp(-t[..., None] / self.creep_times), axis=-1)
 
     def relaxation_modulus(self, t):
         """``E(t)`` (Pa) for ``t >= 0`` (s): stress under a unit step strain."""
         t = np.asarray(t, dtype=float)
-        return self.E0 + np.sum(
-            self.moduli * np.exp(-t[..., None] / self.relaxation_times), axis=-1
-        )
+        return self.E0 + np.sum(self.moduli * np.exp(-t[..., None] / self.relaxation_times), axis=-1)
 
     def folded(self, w_min, w_max, *, tol=1e-6):
         """Copy with the terms inactive over ``[w_min, w_max]`` (rad/s) folded in.
@@ -368,10 +339,7 @@ class Material:
         glassy = w_min * self.relaxation_times > 1.0 / tol
         active = ~(relaxed | glassy)
         return Material(
-            self.E0 + self.moduli[glassy].sum(),
-            self.moduli[active],
-            self.relaxation_times[active],
-            self.nu,
+            self.E0 + self.moduli[glassy].sum(), self.moduli[active], self.relaxation_times[active], self.nu
         )
 
     def __eq__(self, other):

@@ -15,6 +15,7 @@ Arrays are indexed ``h[ix, iy]`` (axis 0 = x), as everywhere in :mod:`bem`. Plai
 matrices are read as SurfaceTopography and the instruments write them, one row per y (as an
 image), which is the transpose of :func:`bem.surfaces.load`'s one row per x.
 """
+
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -53,8 +54,10 @@ class Measurement:
     def __post_init__(self):
         h = check_array("heights", self.heights, ndim=(1, 2))
         if len(self.physical_sizes) != h.ndim or not all(s > 0 for s in self.physical_sizes):
-            raise InputError(f"physical_sizes must give one positive size (m) per axis of heights {h.shape}, "
-                             f"got {self.physical_sizes!r}")
+            raise InputError(
+                f"physical_sizes must give one positive size (m) per axis of heights {h.shape}, "
+                f"got {self.physical_sizes!r}"
+            )
         object.__setattr__(self, "heights", h)
         object.__setattr__(self, "physical_sizes", tuple(float(s) for s in self.physical_sizes))
 
@@ -75,8 +78,18 @@ def _read_errors():
     plain ones its parsers let through on malformed bytes."""
     from SurfaceTopography import Exceptions as e
 
-    return (e.ReadFileError, e.UnknownFileFormat, e.UnsupportedFormatFeature, e.UndefinedDataError,
-            ValueError, KeyError, IndexError, TypeError, OSError, EOFError)
+    return (
+        e.ReadFileError,
+        e.UnknownFileFormat,
+        e.UnsupportedFormatFeature,
+        e.UndefinedDataError,
+        ValueError,
+        KeyError,
+        IndexError,
+        TypeError,
+        OSError,
+        EOFError,
+    )
 
 
 def _open(path):
@@ -125,8 +138,10 @@ def read_topography(path, *, unit=None, physical_sizes=None, channel=0):
     reader = _open(path)
     heights_channels = [c for c in reader.channels if getattr(c, "is_height_channel", True)] or reader.channels
     if not (isinstance(channel, int) and 0 <= channel < len(heights_channels)):
-        raise InputError(f"channel must be an integer in [0, {len(heights_channels) - 1}] (the file's height "
-                         f"channels: {[c.name for c in heights_channels]}), got {channel!r}")
+        raise InputError(
+            f"channel must be an integer in [0, {len(heights_channels) - 1}] (the file's height "
+            f"channels: {[c.name for c in heights_channels]}), got {channel!r}"
+        )
     info = heights_channels[channel]
     file_unit = info.unit if isinstance(info.unit, str) else None
     unit_used = _fixed("unit", unit, file_unit, lambda a, b: _SI.get(a) == _SI.get(b))
@@ -152,9 +167,16 @@ def read_topography(path, *, unit=None, physical_sizes=None, channel=0):
         topo = topo.interpolate_undefined_data()
     heights = np.asarray(np.ma.getdata(topo.heights()), dtype=float) * scale
     sizes = tuple(float(s) * scale for s in topo.physical_sizes)
-    source = {"path": str(path), "format": reader.format(), "channel": info.name, "file_unit": unit_used,
-              "unit_from_file": file_unit is not None, "sizes_from_file": file_sizes is not None,
-              "filled_points": filled, "detrend": "none"}
+    source = {
+        "path": str(path),
+        "format": reader.format(),
+        "channel": info.name,
+        "file_unit": unit_used,
+        "unit_from_file": file_unit is not None,
+        "sizes_from_file": file_sizes is not None,
+        "filled_points": filled,
+        "detrend": "none",
+    }
     return Measurement(heights, sizes, periodic=bool(getattr(topo, "is_periodic", False)), source=source)
 
 

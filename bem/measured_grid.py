@@ -19,6 +19,7 @@ recorded in ``surface.metadata["measured"]``:
 The square patch is the largest centred square of the scan (physical sizes). Line scans
 give 1-D profiles. The PSD report compares the measurement with what the grid keeps.
 """
+
 import numpy as np
 import scipy.signal as ssig
 from scipy import ndimage
@@ -115,8 +116,14 @@ def to_surface(measurement, n, *, boundary="isolated", window="tukey", alpha=0.2
     if window not in WINDOWS:
         raise InputError(f"window must be one of {', '.join(map(repr, WINDOWS))}, got {window!r}")
     patch, side = square_patch(measurement)
-    record = {"boundary": boundary, "patch_side": side, "pixel_sizes": list(measurement.spacing),
-              "patch_points": list(patch.shape), "n": n, "source": dict(measurement.source)}
+    record = {
+        "boundary": boundary,
+        "patch_side": side,
+        "pixel_sizes": list(measurement.spacing),
+        "patch_points": list(patch.shape),
+        "n": n,
+        "source": dict(measurement.source),
+    }
     if boundary == "isolated":
         heights, length = _element_means(patch, n), side
         record["sampling"] = "element means of the cubic spline of the scan"
@@ -128,8 +135,9 @@ def to_surface(measurement, n, *, boundary="isolated", window="tukey", alpha=0.2
         record.update(window=window, alpha=alpha, sampling="Fourier interpolation (band-limited)")
     record["cell_side"] = length
     label = name if name is not None else str(measurement.source.get("path", "measured"))
-    return Surface(heights, length, name=label, centered=boundary == "isolated",
-                   metadata={"kind": "measured", "measured": record})
+    return Surface(
+        heights, length, name=label, centered=boundary == "isolated", metadata={"kind": "measured", "measured": record}
+    )
 
 
 def _radial_psd(field, spacing, bins):
@@ -175,9 +183,16 @@ def psd_report(measurement, surface, *, bins=40):
     full = np.abs(np.fft.fftn(f)) ** 2
     qs = np.meshgrid(*[2 * np.pi * np.fft.fftfreq(m, d) for m, d in zip(f.shape, spacing)], indexing="ij")
     above = np.sqrt(sum(g**2 for g in qs)) > q_max
-    return {"q": q.tolist(), "C": c.tolist(), "q_grid_min": 2 * np.pi / cell, "q_grid_max": q_max,
-            "q_measurement_min": 2 * np.pi / side, "q_measurement_max": float(np.pi / max(spacing)),
-            "rms_height_measurement": float(f.std()), "rms_height_grid": float(np.std(surface.heights)),
-            "rms_slope_measurement": _rms_slope(patch, spacing),
-            "rms_slope_grid": _rms_slope(np.asarray(surface.heights), (surface.spacing,) * surface.ndim),
-            "variance_above_grid_nyquist": float(full[above].sum() / max(full.sum(), 1e-300))}
+    return {
+        "q": q.tolist(),
+        "C": c.tolist(),
+        "q_grid_min": 2 * np.pi / cell,
+        "q_grid_max": q_max,
+        "q_measurement_min": 2 * np.pi / side,
+        "q_measurement_max": float(np.pi / max(spacing)),
+        "rms_height_measurement": float(f.std()),
+        "rms_height_grid": float(np.std(surface.heights)),
+        "rms_slope_measurement": _rms_slope(patch, spacing),
+        "rms_slope_grid": _rms_slope(np.asarray(surface.heights), (surface.spacing,) * surface.ndim),
+        "variance_above_grid_nyquist": float(full[above].sum() / max(full.sum(), 1e-300)),
+    }

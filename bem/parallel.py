@@ -17,6 +17,7 @@ Examples
 ...     bem.get_threads()
 1
 """
+
 import os
 from contextlib import contextmanager
 

@@ -1,6 +1,6 @@
 """Periodic viscoelastic half-space under steady sliding: the surface response operator.
 
-Conventions (SPEC §2.2; SI units). The rigid indenter moves with speed ``v`` (m/s) in
+Conventions (docs/theory.md §3; SI units). The rigid indenter moves with speed ``v`` (m/s) in
 ``+x``; in its frame every field is stationary and material points travel in ``-x``.
 ``p`` is the normal pressure (Pa, compressive positive) and ``u`` the normal surface
 displacement (m, positive into the solid). With the FFT convention of :mod:`bem.fft`,
@@ -15,6 +15,7 @@ displacements and the rigid approach carries the mean (see :mod:`bem.contact`).
 Check of the sign: the symbol's imaginary part has the sign of ``q_x``, so the
 dissipation ``-∫ p du/dx dA = A sum_q q_x Im(a_q) |p_q|**2 >= 0`` for every ``p``.
 """
+
 import numpy as np
 
 from . import fft
@@ -64,7 +65,7 @@ class PeriodicHalfSpace:
         with np.errstate(divide="ignore"):
             green = np.where(qnorm > 0, 2.0 * material.plane_strain_factor / qnorm, 0.0)
         self._green = green  # the symbol is green(|q|) * J(-q_x v): an elastic factor and a
-        self._creep = None   # creep factor that acts along x only (bem.line_preconditioner)
+        self._creep = None  # creep factor that acts along x only (bem.line_preconditioner)
         if material.is_elastic or self.speed == 0.0:
             modulus = material.E0
             self.symbol = green / modulus

@@ -26,6 +26,7 @@ Two forms:
   by composite Simpson rules in ``ln q`` (breakpoints where the PSD has kinks) and the
   trapezoidal rule in ``phi`` (spectrally accurate for the periodic integrand).
 """
+
 import numpy as np
 from scipy.integrate import cumulative_simpson, simpson
 from scipy.special import erf
@@ -113,8 +114,7 @@ def friction_discrete(surface, material, *, speeds, pressure, partial_contact=Tr
     return mu, area
 
 
-def friction(material, *, psd, q0, q1, speeds, pressure, partial_contact=True, breakpoints=(),
-             points=400, angles=256):
+def friction(material, *, psd, q0, q1, speeds, pressure, partial_contact=True, breakpoints=(), points=400, angles=256):
     """Persson's friction from the continuous integrals (isotropic PSD).
 
     Parameters
@@ -151,8 +151,12 @@ def friction(material, *, psd, q0, q1, speeds, pressure, partial_contact=True, b
     points = check_int("points", points, 3) | 1
     angles = check_int("angles", angles, 8)
     edges = np.unique(np.concatenate([[q0, q1], [b for b in breakpoints if q0 < b < q1]]))
-    s = np.concatenate([np.linspace(np.log(a), np.log(b), points)[(1 if k else 0):]
-                        for k, (a, b) in enumerate(zip(edges[:-1], edges[1:]))])
+    s = np.concatenate(
+        [
+            np.linspace(np.log(a), np.log(b), points)[(1 if k else 0) :]
+            for k, (a, b) in enumerate(zip(edges[:-1], edges[1:]))
+        ]
+    )
     q = np.exp(s)
     bounds = [0] + [k * (points - 1) for k in range(1, edges.size)]
     phi = 2 * np.pi * np.arange(angles) / angles
@@ -168,12 +172,12 @@ def friction(material, *, psd, q0, q1, speeds, pressure, partial_contact=True, b
             dens = q**4 * c * inner_g / 8.0  # dq = q ds
             g = np.zeros_like(q)
             for a, b in zip(bounds[:-1], bounds[1:]):
-                g[a + 1:b + 1] = g[a] + cumulative_simpson(dens[a:b + 1], x=s[a:b + 1])
+                g[a + 1 : b + 1] = g[a] + cumulative_simpson(dens[a : b + 1], x=s[a : b + 1])
             p = _p_of_g(g)
         else:
             p = np.ones_like(q)
         integrand = 0.5 * q**4 * c * p * inner_mu
-        mu[i] = sum(simpson(integrand[a:b + 1], x=s[a:b + 1]) for a, b in zip(bounds[:-1], bounds[1:]))
+        mu[i] = sum(simpson(integrand[a : b + 1], x=s[a : b + 1]) for a, b in zip(bounds[:-1], bounds[1:]))
         area[i] = p[-1]
     return mu, area
 
@@ -186,9 +190,19 @@ def friction_for_surface(surface, material, *, speeds, pressure, partial_contact
     """
     spectrum = dict(getattr(surface, "metadata", {}).get("spectrum") or {})
     if not spectrum or spectrum.get("dim") != 2 or spectrum.get("anisotropy", 1.0) != 1.0:
-        raise InputError("surface must be an isotropic 2-D bem.surfaces.self_affine surface (its target PSD "
-                         "is needed); use friction(..., psd=...) or friction_discrete for others")
+        raise InputError(
+            "surface must be an isotropic 2-D bem.surfaces.self_affine surface (its target PSD "
+            "is needed); use friction(..., psd=...) or friction_discrete for others"
+        )
     q_l = 2 * np.pi / surface.length
-    return friction(material, psd=lambda q: psd_target(q, **spectrum), q0=q_l / np.sqrt(np.pi),
-                    q1=spectrum["cutoff_wavevector"], speeds=speeds, pressure=pressure,
-                    partial_contact=partial_contact, breakpoints=(spectrum["rolloff_wavevector"],), **kw)
+    return friction(
+        material,
+        psd=lambda q: psd_target(q, **spectrum),
+        q0=q_l / np.sqrt(np.pi),
+        q1=spectrum["cutoff_wavevector"],
+        speeds=speeds,
+        pressure=pressure,
+        partial_contact=partial_contact,
+        breakpoints=(spectrum["rolloff_wavevector"],),
+        **kw,
+    )

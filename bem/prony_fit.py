@@ -90,14 +90,9 @@ def check_dma(frequencies, storage, loss, hz=False):
     e1 = check_array("storage", storage, ndim=1, positive=True)
     e2 = check_array("loss", loss, ndim=1)
     if not (w.shape == e1.shape == e2.shape):
-        raise InputError(
-            f"frequencies, storage and loss must have the same length, got "
-            f"{w.size}, {e1.size}, {e2.size}"
-        )
+        raise InputError(f"frequencies, storage and loss must have the same length, got {w.size}, {e1.size}, {e2.size}")
     if np.any(e2 < 0):
-        raise InputError(
-            f"loss must be >= 0 Pa everywhere (a passive material dissipates), got min {e2.min():g}"
-        )
+        raise InputError(f"loss must be >= 0 Pa everywhere (a passive material dissipates), got min {e2.min():g}")
     return w, e1, e2
 
 
@@ -164,12 +159,8 @@ def refine_terms(w, e1, e2, E0, moduli, times, *, loss_floor=1e-4, bounds=None):
 
     def jacobian(p):
         e0, ek, u, d = parts(p)
-        top = (
-            np.hstack([np.full((w.size, 1), e0), ek * u**2 / d, ek * 2 * u**2 / d**2]) / e1[:, None]
-        )
-        bot = (
-            np.hstack([np.zeros((w.size, 1)), ek * u / d, ek * u * (1 - u**2) / d**2]) / s2[:, None]
-        )
+        top = np.hstack([np.full((w.size, 1), e0), ek * u**2 / d, ek * 2 * u**2 / d**2]) / e1[:, None]
+        bot = np.hstack([np.zeros((w.size, 1)), ek * u / d, ek * u * (1 - u**2) / d**2]) / s2[:, None]
         return np.vstack([top, bot])
 
     p0 = np.concatenate([[np.log(E0)], np.log(moduli), np.log(times)])
@@ -237,9 +228,6 @@ def fit_prony_series(w, e1, e2, taus, *, smoothing=0.0, loss_floor=1e-4, refine=
     fitted = a1 @ x + 1j * (a2 @ x)
     errs = relative_errors(fitted, e1, np.maximum(e2, loss_floor * np.hypot(e1, e2)))
     report = FitReport(
-        *errs,
-        terms=int(moduli.size),
-        smoothing=smoothing,
-        frequency_band=(float(w.min()), float(w.max())),
+        *errs, terms=int(moduli.size), smoothing=smoothing, frequency_band=(float(w.min()), float(w.max()))
     )
     return E0, moduli, times, report

@@ -1,4 +1,5 @@
 """The result of one steady sliding solve, :class:`SlidingResult`, shared by every solver."""
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,7 +64,9 @@ class SlidingResult:
     def __repr__(self):
         """One line: the scalars and the fields' shape, never the arrays themselves."""
         status = "converged" if self.success else "NOT converged"
-        return (f"{type(self).__name__}({status}, shape={self.pressure.shape}, speed={self.speed:.6g} m/s, "
-                f"load={self.load:.6g}, friction={self.friction:.6g}, friction_eq6={self.friction_eq6:.6g}, "
-                f"contact_fraction={self.contact_fraction:.6g}, approach={self.approach:.6g} m, "
-                f"iterations={self.iterations}, matvecs={self.matvecs}, residual={self.residual:.3g})")
+        return (
+            f"{type(self).__name__}({status}, shape={self.pressure.shape}, speed={self.speed:.6g} m/s, "
+            f"load={self.load:.6g}, friction={self.friction:.6g}, friction_eq6={self.friction_eq6:.6g}, "
+            f"contact_fraction={self.contact_fraction:.6g}, approach={self.approach:.6g} m, "
+            f"iterations={self.iterations}, matvecs={self.matvecs}, residual={self.residual:.3g})"
+        )

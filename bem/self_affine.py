@@ -3,6 +3,7 @@
 The target spectrum and the PSD normalisation are stated in :mod:`bem.statistics`; the grid
 conventions in :mod:`bem.surfaces`.
 """
+
 import numpy as np
 
 from . import fft
@@ -21,8 +22,21 @@ def _rng(seed):
     return np.random.default_rng(seed), seed
 
 
-def self_affine(n, length, *, hurst, scales=None, cutoff_wavevector=None, rolloff=1.0,
-                rms_height=None, rms_slope=None, seed=0, dim=2, anisotropy=1.0, name="self-affine"):
+def self_affine(
+    n,
+    length,
+    *,
+    hurst,
+    scales=None,
+    cutoff_wavevector=None,
+    rolloff=1.0,
+    rms_height=None,
+    rms_slope=None,
+    seed=0,
+    dim=2,
+    anisotropy=1.0,
+    name="self-affine",
+):
     """Randomly rough self-affine surface (or profile) by the spectral method.
 
     Every mode gets the deterministic amplitude ``sqrt(C(q) q_L**dim)`` and a random phase
@@ -31,7 +45,7 @@ def self_affine(n, length, *, hurst, scales=None, cutoff_wavevector=None, rollof
     realised PSD therefore equals the target :func:`bem.statistics.psd_target` exactly on
     the grid; its keywords are stored in ``surface.metadata["spectrum"]``. The mean is zero.
 
-    Target (SPEC 2.4): ``C(q) ∝ q**-2(1+H)`` (2-D; ``q**-(1+2H)`` for 1-D profiles) for
+    Target (docs/theory.md §5): ``C(q) ∝ q**-2(1+H)`` (2-D; ``q**-(1+2H)`` for 1-D profiles) for
     ``q_r <= q <= q_1``, flat below ``q_r`` (roll-off), zero above ``q_1`` and at ``q = 0``;
     ``q_L = 2 pi / length``, ``q_r = rolloff q_L``, ``q_1 = scales q_L``.
 
@@ -94,29 +108,42 @@ def self_affine(n, length, *, hurst, scales=None, cutoff_wavevector=None, rollof
     stretch = max(s, 1.0 / s)
     q_l = 2.0 * np.pi / length
     if scales is not None and cutoff_wavevector is not None:
-        raise InputError(f"give scales or cutoff_wavevector, not both; got scales={show(scales)}, "
-                         f"cutoff_wavevector={show(cutoff_wavevector)}")
+        raise InputError(
+            f"give scales or cutoff_wavevector, not both; got scales={show(scales)}, "
+            f"cutoff_wavevector={show(cutoff_wavevector)}"
+        )
     if cutoff_wavevector is None:
         scales = check_int("scales", 64 if scales is None else scales, 1)
         if scales * stretch > n / 2:
-            raise InputError(f"scales must be in [1, n / 2 / max(anisotropy, 1 / anisotropy)] = "
-                             f"[1, {n / 2 / stretch:g}] to stay below the grid's Nyquist (n = {n}), "
-                             f"got {scales}")
+            raise InputError(
+                f"scales must be in [1, n / 2 / max(anisotropy, 1 / anisotropy)] = "
+                f"[1, {n / 2 / stretch:g}] to stay below the grid's Nyquist (n = {n}), "
+                f"got {scales}"
+            )
         q_1 = scales * q_l
     else:
         q_1 = check_range("cutoff_wavevector", cutoff_wavevector, q_l, np.pi * n / length / stretch)
     rolloff = check_range("rolloff", rolloff, 1.0, q_1 / q_l)
     if (rms_height is None) == (rms_slope is None):
-        raise InputError(f"give exactly one of rms_height and rms_slope, got rms_height={show(rms_height)}, "
-                         f"rms_slope={show(rms_slope)}")
+        raise InputError(
+            f"give exactly one of rms_height and rms_slope, got rms_height={show(rms_height)}, "
+            f"rms_slope={show(rms_slope)}"
+        )
     target = check_positive("rms_height", rms_height) if rms_slope is None else None
     slope = check_positive("rms_slope", rms_slope) if rms_height is None else None
     rng, seed_value = _rng(seed)
 
     shape = (n,) * dim
     q = fft.wavevectors(shape, length)
-    spectrum = dict(hurst=hurst, cutoff_wavevector=q_1, rolloff_wavevector=rolloff * q_l, dim=dim,
-                    prefactor=1.0, anisotropy=s, directional_factor=1.0)
+    spectrum = dict(
+        hurst=hurst,
+        cutoff_wavevector=q_1,
+        rolloff_wavevector=rolloff * q_l,
+        dim=dim,
+        prefactor=1.0,
+        anisotropy=s,
+        directional_factor=1.0,
+    )
     if s != 1.0:
         spectrum["directional_factor"] = _directional_factor(q, spectrum)
     c = psd_target(q, **spectrum)
@@ -144,15 +171,37 @@ def _directional_factor(q, spectrum):
     s2 = spectrum["anisotropy"] ** 2
     factor = (s2 * xx - xy) / (yy - s2 * xy)
     if not (np.isfinite(factor) and factor > 0):
-        raise InputError(f"anisotropy {show(spectrum['anisotropy'])} cannot be realised exactly on this grid; "
-                         "use more scales or a value closer to 1")
+        raise InputError(
+            f"anisotropy {show(spectrum['anisotropy'])} cannot be realised exactly on this grid; "
+            "use more scales or a value closer to 1"
+        )
     return float(factor)
 
 
-def profile(n, length, *, hurst, scales=None, cutoff_wavevector=None, rolloff=1.0,
-            rms_height=None, rms_slope=None, seed=0, name="profile"):
+def profile(
+    n,
+    length,
+    *,
+    hurst,
+    scales=None,
+    cutoff_wavevector=None,
+    rolloff=1.0,
+    rms_height=None,
+    rms_slope=None,
+    seed=0,
+    name="profile",
+):
     """Self-affine 1-D profile: :func:`self_affine` with ``dim=1`` (PSD ∝ q**-(1+2H))."""
-    return self_affine(n, length, hurst=hurst, scales=scales, cutoff_wavevector=cutoff_wavevector,
-                       rolloff=rolloff, rms_height=rms_height, rms_slope=rms_slope, seed=seed,
-                       dim=1, name=name)
-
+    return self_affine(
+        n,
+        length,
+        hurst=hurst,
+        scales=scales,
+        cutoff_wavevector=cutoff_wavevector,
+        rolloff=rolloff,
+        rms_height=rms_height,
+        rms_slope=rms_slope,
+        seed=seed,
+        dim=1,
+        name=name,
+    )

@@ -3,7 +3,7 @@
 Units SI. Load is the total normal force on the cell (N) for 2-D surfaces and the force
 per unit length (N/m) for 1-D profiles. The indenter slides at ``speed`` (m/s) in ``+x``.
 
-Friction (SPEC §2.3): ``friction`` is the dissipation form
+Friction (docs/theory.md §4): ``friction`` is the dissipation form
 ``mu = -(1/F_N) ∫ p du/dx dA`` evaluated exactly in Fourier space (non-negative on any
 grid); ``friction_eq6 = -(1/F_N) ∫ p dh/dx dA`` (the seed's eq. 6) uses the spectral
 derivative of the heights. They coincide in full contact and converge together as the
@@ -19,6 +19,7 @@ percent-level when ``v lambda`` is far below a cell); ``friction_eq6`` uses cent
 differences of the heights between element centres (one-sided at the domain's ends, where
 the pressure vanishes).
 """
+
 import logging
 import time
 
@@ -48,8 +49,9 @@ def _as_surface(surface):
         return surface
     if hasattr(surface, "heights") and hasattr(surface, "length"):
         return Surface(surface.heights, surface.length)
-    raise InputError(f"surface must be a bem.surfaces.Surface (or have .heights and .length), "
-                     f"got {type(surface).__name__}")
+    raise InputError(
+        f"surface must be a bem.surfaces.Surface (or have .heights and .length), got {type(surface).__name__}"
+    )
 
 
 def _material_key(material):
@@ -85,8 +87,9 @@ def check_inputs(surface, material, speed, load, approach, rtol):
         raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
     speed = check_positive("speed", speed, allow_zero=True)
     if (load is None) == (approach is None):
-        raise InputError("give exactly one of load (N, or N/m for profiles; load control) "
-                         "or approach (m; displacement control)")
+        raise InputError(
+            "give exactly one of load (N, or N/m for profiles; load control) or approach (m; displacement control)"
+        )
     if load is not None:
         load = check_positive("load", load)
     else:
@@ -100,8 +103,19 @@ def check_inputs(surface, material, speed, load, approach, rtol):
 _ISOLATED_METHODS = ("auto", "uniform", "adaptive")
 # keywords of bem.adaptive.solve_adaptive that solve() passes on with method="adaptive"
 ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling", "height", "max_elements")
-_SOLVE_KEYWORDS = ("speed", "load", "approach", "periodic", "method", "rtol", "maxiter", "initial",
-                   "raise_on_failure", "contact_options", "direction")
+_SOLVE_KEYWORDS = (
+    "speed",
+    "load",
+    "approach",
+    "periodic",
+    "method",
+    "rtol",
+    "maxiter",
+    "initial",
+    "raise_on_failure",
+    "contact_options",
+    "direction",
+)
 _PERIODIC_METHODS = ("auto", "active-set")
 
 
@@ -127,9 +141,23 @@ def _choose_isolated_method(surface, material, *, speed, load, rtol):
     return "uniform"
 
 
-def solve(surface, material, *, speed, load=None, approach=None, periodic=True, method="auto",
-          rtol=1e-8, maxiter=400, initial=None, raise_on_failure=True, contact_options=None,
-          direction=0.0, **adaptive_options):
+def solve(
+    surface,
+    material,
+    *,
+    speed,
+    load=None,
+    approach=None,
+    periodic=True,
+    method="auto",
+    rtol=1e-8,
+    maxiter=400,
+    initial=None,
+    raise_on_failure=True,
+    contact_options=None,
+    direction=0.0,
+    **adaptive_options,
+):
     """Steady sliding of a rigid surface over a viscoelastic half-space.
 
     Parameters
@@ -200,29 +228,56 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     theta, turns = sliding_direction.plan(direction, surface.ndim, periodic, method)
     if turns:
         return sliding_direction.solve_turned(
-            solve, surface, material, turns, speed=speed, load=load, approach=approach, periodic=periodic,
-            method=method, rtol=rtol, maxiter=maxiter, initial=initial, raise_on_failure=raise_on_failure,
-            contact_options=contact_options, **adaptive_options)
+            solve,
+            surface,
+            material,
+            turns,
+            speed=speed,
+            load=load,
+            approach=approach,
+            periodic=periodic,
+            method=method,
+            rtol=rtol,
+            maxiter=maxiter,
+            initial=initial,
+            raise_on_failure=raise_on_failure,
+            contact_options=contact_options,
+            **adaptive_options,
+        )
     if not isinstance(periodic, (bool, np.bool_)):
         raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {show(periodic)}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
     if method not in methods:
-        raise InputError(f"method must be one of {', '.join(repr(m) for m in methods)} for "
-                         f"periodic={bool(periodic)}, got {show(method)}")
+        raise InputError(
+            f"method must be one of {', '.join(repr(m) for m in methods)} for "
+            f"periodic={bool(periodic)}, got {show(method)}"
+        )
     if adaptive_options and method != "adaptive":
         names = ", ".join(repr(k) for k in sorted(adaptive_options))
-        raise InputError(f"{names} {'is an option' if len(adaptive_options) == 1 else 'are options'} of "
-                         f"method='adaptive' (isolated contacts) only, got method={method!r}")
+        raise InputError(
+            f"{names} {'is an option' if len(adaptive_options) == 1 else 'are options'} of "
+            f"method='adaptive' (isolated contacts) only, got method={method!r}"
+        )
     if not periodic and method == "auto":
         method = _choose_isolated_method(surface, material, speed=speed, load=load, rtol=rtol)
     if method == "adaptive":
         if load is None:
-            raise InputError("approach (displacement control) is not available with method='adaptive'; "
-                             "give load (N, or N/m for profiles)")
+            raise InputError(
+                "approach (displacement control) is not available with method='adaptive'; "
+                "give load (N, or N/m for profiles)"
+            )
         from .adaptive.solver import solve_adaptive
 
-        return solve_adaptive(surface, material, speed=speed, load=load, rtol=rtol, maxiter=maxiter,
-                              raise_on_failure=raise_on_failure, **adaptive_options)
+        return solve_adaptive(
+            surface,
+            material,
+            speed=speed,
+            load=load,
+            rtol=rtol,
+            maxiter=maxiter,
+            raise_on_failure=raise_on_failure,
+            **adaptive_options,
+        )
     maxiter = check_int("maxiter", maxiter, 1)
     if initial is not None:
         initial = check_array("initial", initial)
@@ -231,14 +286,24 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     if approach is not None and periodic:
         limit = float(surface.heights.max() - surface.heights.mean())
         if not approach < limit:
-            raise InputError(f"approach must be in (0, {show(limit)}) m: at max(h) - mean(h) the cell is in full "
-                             f"contact and the load is unbounded (zero-mean displacement), got {show(approach)}")
+            raise InputError(
+                f"approach must be in (0, {show(limit)}) m: at max(h) - mean(h) the cell is in full "
+                f"contact and the load is unbounded (zero-mean displacement), got {show(approach)}"
+            )
     t0 = time.perf_counter()
     op = sliding_direction.operator(operator_for, surface, material, speed, periodic, theta)
     area = op.area
-    sol = solve_contact(op, surface.heights, mean_pressure=None if load is None else load / area,
-                        approach=approach, rtol=rtol, maxiter=maxiter, initial=initial,
-                        raise_on_failure=False, options=contact_options or ContactOptions())
+    sol = solve_contact(
+        op,
+        surface.heights,
+        mean_pressure=None if load is None else load / area,
+        approach=approach,
+        rtol=rtol,
+        maxiter=maxiter,
+        initial=initial,
+        raise_on_failure=False,
+        options=contact_options or ContactOptions(),
+    )
     p = sol.pressure
     total = float(p.mean() * area)
     if total > 0:
@@ -247,12 +312,23 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
     else:
         friction = friction_eq6 = 0.0
     result = SlidingResult(
-        pressure=p, displacement=sol.displacement, gap=sol.gap, approach=sol.approach,
-        contact_fraction=float(np.count_nonzero(p > 0) / p.size), friction=float(friction),
-        friction_eq6=friction_eq6, dissipated_power=float(friction * total * speed),
-        load=total, speed=speed, iterations=sol.iterations, matvecs=sol.matvecs,
-        residual=sol.residual, success=sol.success, message=sol.message,
-        wall_time=time.perf_counter() - t0)
+        pressure=p,
+        displacement=sol.displacement,
+        gap=sol.gap,
+        approach=sol.approach,
+        contact_fraction=float(np.count_nonzero(p > 0) / p.size),
+        friction=float(friction),
+        friction_eq6=friction_eq6,
+        dissipated_power=float(friction * total * speed),
+        load=total,
+        speed=speed,
+        iterations=sol.iterations,
+        matvecs=sol.matvecs,
+        residual=sol.residual,
+        success=sol.success,
+        message=sol.message,
+        wall_time=time.perf_counter() - t0,
+    )
     log.info("speed %.3e m/s: %s", speed, sol.message)
     if not sol.success and raise_on_failure:
         raise ConvergenceError(f"speed {show(speed)} m/s: {sol.message}", result)
@@ -262,8 +338,9 @@ def solve(surface, material, *, speed, load=None, approach=None, periodic=True, 
 def _friction_periodic(op, surface, p, total):
     """Dissipation form (exact in Fourier space) and eq. 6 (spectral dh/dx) on a periodic cell."""
     friction = op.dissipation_integral(fft.forward(p)) / total
-    dhdx = fft.inverse(1j * fft.wavevectors(surface.shape, surface.length)[0]
-                       * fft.forward(surface.heights), surface.shape)
+    dhdx = fft.inverse(
+        1j * fft.wavevectors(surface.shape, surface.length)[0] * fft.forward(surface.heights), surface.shape
+    )
     return friction, float(-np.mean(p * dhdx) * op.area / total)
 
 
@@ -271,4 +348,4 @@ def _friction_isolated(op, surface, p, total):
     """Dissipation form (slope collocated at element centres) and eq. 6 (central differences)."""
     friction = op.dissipation_integral(p) / total
     dhdx = np.gradient(surface.heights, op.spacing, axis=0)
-    return friction, float(-np.sum(p * dhdx) * op.spacing ** surface.ndim / total)
+    return friction, float(-np.sum(p * dhdx) * op.spacing**surface.ndim / total)

@@ -16,6 +16,7 @@ Inputs are a :class:`bem.surfaces.Surface` (anything with ``heights`` and ``leng
 an array with the cell side ``length`` (m) beside it. Derivatives are spectral: the cell
 is treated as periodic, as the solvers treat it.
 """
+
 import numpy as np
 
 from . import fft
@@ -174,8 +175,9 @@ def psd(surface, length=None, *, bins=None):
     return q_out, c_out
 
 
-def psd_target(q, *, hurst, cutoff_wavevector, rolloff_wavevector, dim=2, prefactor=1.0,
-               anisotropy=1.0, directional_factor=1.0):
+def psd_target(
+    q, *, hurst, cutoff_wavevector, rolloff_wavevector, dim=2, prefactor=1.0, anisotropy=1.0, directional_factor=1.0
+):
     """Target PSD of the self-affine generator (:func:`bem.surfaces.self_affine`).
 
     Isotropic shape ``S(q) = max(q, q_r)**e`` for ``0 < q <= q_1``, zero at ``q = 0`` and
@@ -216,8 +218,9 @@ def psd_target(q, *, hurst, cutoff_wavevector, rolloff_wavevector, dim=2, prefac
     q_1 = check_positive("cutoff_wavevector", cutoff_wavevector)
     q_r = check_positive("rolloff_wavevector", rolloff_wavevector)
     if q_r > q_1:
-        raise InputError(f"rolloff_wavevector must be in (0, cutoff_wavevector = {q_1}], "
-                         f"got {show(rolloff_wavevector)}")
+        raise InputError(
+            f"rolloff_wavevector must be in (0, cutoff_wavevector = {q_1}], got {show(rolloff_wavevector)}"
+        )
     prefactor = check_positive("prefactor", prefactor, allow_zero=True)
     s = check_positive("anisotropy", anisotropy)
     b = check_positive("directional_factor", directional_factor)
@@ -229,8 +232,10 @@ def psd_target(q, *, hurst, cutoff_wavevector, rolloff_wavevector, dim=2, prefac
         q_eff = np.hypot(min(s, 1.0) * qx, qy / max(s, 1.0))
         factor = (qx**2 + b * qy**2) / np.where(mag2 > 0, mag2, 1.0)
     elif s != 1.0 or b != 1.0:
-        raise InputError(f"q must be components (qx, qy) for anisotropy != 1 or directional_factor != 1, "
-                         f"got anisotropy={show(s)}, directional_factor={show(b)}")
+        raise InputError(
+            f"q must be components (qx, qy) for anisotropy != 1 or directional_factor != 1, "
+            f"got anisotropy={show(s)}, directional_factor={show(b)}"
+        )
     else:
         q_eff = np.abs(np.asarray(q[0] if isinstance(q, tuple) else q, dtype=float))
     shape = np.maximum(q_eff, q_r) ** exponent

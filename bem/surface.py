@@ -1,7 +1,8 @@
 """The :class:`Surface` type: heights of a rigid surface on a square grid, validated.
 
-Conventions (SPEC 2.3, 2.4): see :mod:`bem.surfaces`, which also holds every constructor.
+Conventions (docs/theory.md §4, §5): see :mod:`bem.surfaces`, which also holds every constructor.
 """
+
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -58,8 +59,7 @@ class Surface:
         object.__setattr__(self, "length", check_positive("length", self.length))
         object.__setattr__(self, "name", str(self.name))
         object.__setattr__(self, "centered", bool(self.centered))
-        frozen = {k: MappingProxyType(dict(v)) if isinstance(v, Mapping) else v
-                  for k, v in dict(self.metadata).items()}
+        frozen = {k: MappingProxyType(dict(v)) if isinstance(v, Mapping) else v for k, v in dict(self.metadata).items()}
         object.__setattr__(self, "metadata", MappingProxyType(frozen))
 
     def __reduce__(self):
@@ -121,4 +121,3 @@ def from_heights(heights, length, *, name="", centered=False):
     0.00025
     """
     return Surface(heights, length, name=name, centered=centered, metadata={"kind": "array"})
-

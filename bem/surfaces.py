@@ -4,7 +4,7 @@ Periodic sinusoids and measured files are made here; self-affine rough surfaces 
 :mod:`bem.self_affine`, indenters (sphere, cylinder) in :mod:`bem.indenters`, and all are
 reached as ``bem.surfaces.<name>``.
 
-Conventions (SPEC 2.3, 2.4). Heights ``h`` (m) are **positive toward the half-space**, so
+Conventions (docs/theory.md §4, §5). Heights ``h`` (m) are **positive toward the half-space**, so
 contact starts at ``max(h)``. A surface is a 1-D profile ``h[ix]`` or a square 2-D map
 ``h[ix, iy]`` (axis 0 is x, the sliding direction) on a cell of side ``length`` (m) with
 ``n`` points per side, spacing ``length / n``. Periodic cells put point ``j`` at
@@ -15,6 +15,7 @@ it at the centre of element ``j`` of a domain centred on the indenter,
 PSD normalisation and the target spectrum of :func:`self_affine` are stated in
 :mod:`bem.statistics`.
 """
+
 from pathlib import Path
 
 import numpy as np
@@ -62,11 +63,14 @@ def sinusoid(n, length, *, amplitude, wavelength=None, dim=1, direction="x", nam
     wavelength = length if wavelength is None else check_positive("wavelength", wavelength)
     periods = round(length / wavelength)
     if periods < 1 or abs(length / wavelength - periods) > 1e-9 * length / wavelength:
-        raise InputError(f"wavelength must be length / k for a whole number k >= 1 (periodic cell, "
-                         f"length = {show(length)}), got {show(wavelength)}")
+        raise InputError(
+            f"wavelength must be length / k for a whole number k >= 1 (periodic cell, "
+            f"length = {show(length)}), got {show(wavelength)}"
+        )
     if 2 * periods >= n:
-        raise InputError(f"wavelength must be > 2 spacing = {show(2 * length / n)} (resolved on n = {n}), "
-                         f"got {show(wavelength)}")
+        raise InputError(
+            f"wavelength must be > 2 spacing = {show(2 * length / n)} (resolved on n = {n}), got {show(wavelength)}"
+        )
     valid = ("x",) if dim == 1 else ("x", "y", "xy")
     if direction not in valid:
         raise InputError(f"direction must be one of {valid} for dim={dim}, got {show(direction)}")
@@ -74,10 +78,11 @@ def sinusoid(n, length, *, amplitude, wavelength=None, dim=1, direction="x", nam
     if dim == 1:
         heights = amplitude * wave
     else:
-        heights = amplitude * {"x": wave[:, None] * np.ones(n), "y": np.ones(n)[:, None] * wave,
-                               "xy": np.outer(wave, wave)}[direction]
-    meta = {"kind": "sinusoid", "amplitude": amplitude, "wavelength": length / periods,
-            "direction": direction}
+        heights = (
+            amplitude
+            * {"x": wave[:, None] * np.ones(n), "y": np.ones(n)[:, None] * wave, "xy": np.outer(wave, wave)}[direction]
+        )
+    meta = {"kind": "sinusoid", "amplitude": amplitude, "wavelength": length / periods, "direction": direction}
     return Surface(heights, length, name=name, metadata=meta)
 
 
@@ -131,7 +136,9 @@ def load(path, length, *, unit="m", name=None):
     if data.ndim not in (1, 2) or (data.ndim == 2 and data.shape[0] != data.shape[1]):
         raise InputError(f"path {show(str(p))} must hold 1-D or square 2-D heights, got shape {data.shape}")
     if data.shape[0] < 2 or not np.all(np.isfinite(data)):
-        raise InputError(f"path {show(str(p))} must hold finite heights, at least 2 per side; "
-                         f"got shape {data.shape}, {np.count_nonzero(~np.isfinite(data))} non-finite")
+        raise InputError(
+            f"path {show(str(p))} must hold finite heights, at least 2 per side; "
+            f"got shape {data.shape}, {np.count_nonzero(~np.isfinite(data))} non-finite"
+        )
     meta = {"kind": "file", "path": str(p), "unit": unit}
     return Surface(data * _UNITS[unit], length, name=p.stem if name is None else name, metadata=meta)

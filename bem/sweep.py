@@ -10,6 +10,7 @@ reported with ``None`` and the sweep goes on; the next point then starts cold.
 
 Units SI: speeds in m/s, loads in N (N/m for 1-D profiles).
 """
+
 import logging
 from dataclasses import dataclass, field
 
@@ -51,12 +52,28 @@ class FrictionCurve:
     def __repr__(self):
         mu = self.friction[np.isfinite(self.friction)]
         peak = f", peak friction {mu.max():.4g}" if mu.size else ""
-        return (f"FrictionCurve(load={self.load:g}, {self.speeds.size} speeds from {self.speeds.min():.3g} to "
-                f"{self.speeds.max():.3g} m/s, {int(np.sum(self.success))} converged{peak})")
+        return (
+            f"FrictionCurve(load={self.load:g}, {self.speeds.size} speeds from {self.speeds.min():.3g} to "
+            f"{self.speeds.max():.3g} m/s, {int(np.sum(self.success))} converged{peak})"
+        )
 
 
-def sweep(surfaces, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True, periodic=True,
-          method="auto", skip=None, on_point=None, keep=True, direction=0.0):
+def sweep(
+    surfaces,
+    material,
+    *,
+    speeds,
+    load,
+    rtol=1e-8,
+    maxiter=400,
+    warm_start=True,
+    periodic=True,
+    method="auto",
+    skip=None,
+    on_point=None,
+    keep=True,
+    direction=0.0,
+):
     """Solve every surface at every speed, in increasing speed, warm-starting each surface.
 
     Parameters
@@ -93,9 +110,18 @@ def sweep(surfaces, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_star
                 continue
             start = previous[r] if warm_start and method != "adaptive" else None
             try:
-                res = sliding.solve(surface, material, speed=float(speeds[i]), load=load, rtol=rtol,
-                                    maxiter=maxiter, initial=start, periodic=periodic, method=method,
-                                    direction=direction)
+                res = sliding.solve(
+                    surface,
+                    material,
+                    speed=float(speeds[i]),
+                    load=load,
+                    rtol=rtol,
+                    maxiter=maxiter,
+                    initial=start,
+                    periodic=periodic,
+                    method=method,
+                    direction=direction,
+                )
             except ConvergenceError as err:
                 res, message = None, str(err)
                 log.warning("%s", err)
@@ -121,14 +147,28 @@ def check_sweep(surface, material, *, speeds, loads, rtol):
 def _loads(load):
     if isinstance(load, (list, tuple, np.ndarray)):
         if len(load) == 0:
-            raise InputError(f"load must be a number > 0 or a non-empty list of them (N; N/m for profiles), "
-                             f"got {show(load)}")
+            raise InputError(
+                f"load must be a number > 0 or a non-empty list of them (N; N/m for profiles), got {show(load)}"
+            )
         return [check_positive("load", x) for x in load], True
     return [load], False
 
 
-def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, warm_start=True,
-                   progress=False, callback=None, periodic=True, method="auto", direction=0.0):
+def friction_curve(
+    surface,
+    material,
+    *,
+    speeds,
+    load,
+    rtol=1e-8,
+    maxiter=400,
+    warm_start=True,
+    progress=False,
+    callback=None,
+    periodic=True,
+    method="auto",
+    direction=0.0,
+):
     """Friction against speed: solve at each speed, warm-starting from the neighbour.
 
     Parameters
@@ -169,14 +209,25 @@ def friction_curve(surface, material, *, speeds, load, rtol=1e-8, maxiter=400, w
     curves = []
     with tqdm(total=speeds.size * len(loads), disable=not progress, desc="friction curve", unit="speed") as bar:
         for j, (_, _, f_n, _, _) in enumerate(checked):
+
             def on_point(i, r, res, message, j=j):
                 bar.update(1)
                 if callback is not None:
                     callback(j * speeds.size + i if several else i, float(speeds[i]), res, message)
 
-            results, messages = sweep([surface], material, speeds=speeds, load=f_n, rtol=rtol, maxiter=maxiter,
-                                      warm_start=warm_start, periodic=periodic, method=method,
-                                      on_point=on_point, direction=direction)
+            results, messages = sweep(
+                [surface],
+                material,
+                speeds=speeds,
+                load=f_n,
+                rtol=rtol,
+                maxiter=maxiter,
+                warm_start=warm_start,
+                periodic=periodic,
+                method=method,
+                on_point=on_point,
+                direction=direction,
+            )
             curves.append(_curve(speeds, results[0], messages[0], f_n))
     return curves if several else curves[0]
 
@@ -185,8 +236,16 @@ def _curve(speeds, results, messages, load):
     def column(attr):
         return np.array([getattr(r, attr) if r is not None else np.nan for r in results], dtype=float)
 
-    return FrictionCurve(speeds=speeds, friction=column("friction"), friction_eq6=column("friction_eq6"),
-                         contact_fraction=column("contact_fraction"), dissipated_power=column("dissipated_power"),
-                         iterations=column("iterations"), residual=column("residual"),
-                         success=np.array([r is not None for r in results]), messages=messages, results=results,
-                         load=float(load))
+    return FrictionCurve(
+        speeds=speeds,
+        friction=column("friction"),
+        friction_eq6=column("friction_eq6"),
+        contact_fraction=column("contact_fraction"),
+        dissipated_power=column("dissipated_power"),
+        iterations=column("iterations"),
+        residual=column("residual"),
+        success=np.array([r is not None for r in results]),
+        messages=messages,
+        results=results,
+        load=float(load),
+    )

@@ -64,9 +64,7 @@ class WLF:
         object.__setattr__(self, "C1", check_positive("C1", self.C1))
         object.__setattr__(self, "C2", check_positive("C2 (K)", self.C2))
         object.__setattr__(
-            self,
-            "reference_temperature",
-            check_positive("reference_temperature (K)", self.reference_temperature),
+            self, "reference_temperature", check_positive("reference_temperature (K)", self.reference_temperature)
         )
 
     def __call__(self, T):
@@ -77,9 +75,7 @@ class WLF:
                 f"WLF: temperature T must be > reference_temperature - C2 = "
                 f"{self.reference_temperature - self.C2:g} K, got {T!r}"
             )
-        out = (
-            self.C1 * (self.reference_temperature - _temperatures(T)) / (self.C2 + dt)
-        )  # +0.0 at T_ref
+        out = self.C1 * (self.reference_temperature - _temperatures(T)) / (self.C2 + dt)  # +0.0 at T_ref
         return float(out) if out.ndim == 0 else out
 
     def shift_factor(self, T):
@@ -104,24 +100,16 @@ class Arrhenius:
 
     def __post_init__(self):
         object.__setattr__(
-            self,
-            "activation_energy",
-            check_positive("activation_energy (J/mol)", self.activation_energy),
+            self, "activation_energy", check_positive("activation_energy (J/mol)", self.activation_energy)
         )
         object.__setattr__(
-            self,
-            "reference_temperature",
-            check_positive("reference_temperature (K)", self.reference_temperature),
+            self, "reference_temperature", check_positive("reference_temperature (K)", self.reference_temperature)
         )
 
     def __call__(self, T):
         """``log10 a_T`` at ``T`` (K; scalar or array)."""
         t = _temperatures(T)
-        out = (
-            self.activation_energy
-            / (GAS_CONSTANT * np.log(10.0))
-            * (1.0 / t - 1.0 / self.reference_temperature)
-        )
+        out = self.activation_energy / (GAS_CONSTANT * np.log(10.0)) * (1.0 / t - 1.0 / self.reference_temperature)
         return float(out) if out.ndim == 0 else out
 
     def shift_factor(self, T):
@@ -143,9 +131,7 @@ def fit_wlf(temperatures, log_shift, reference_temperature, weights=None):
     dt = T - reference_temperature
     off = np.abs(y) > 1e-12
     if off.sum() < 2:
-        raise InputError(
-            "fit_wlf needs at least 2 temperatures away from the reference temperature"
-        )
+        raise InputError("fit_wlf needs at least 2 temperatures away from the reference temperature")
     slope, icpt = np.polyfit(dt[off], dt[off] / y[off], 1)
     c1 = -1.0 / slope if slope < 0 else 10.0
     c2 = icpt * -c1 if icpt * -c1 > 0 else 50.0
@@ -175,9 +161,7 @@ def fit_arrhenius(temperatures, log_shift, reference_temperature, weights=None):
     x = 1.0 / T - 1.0 / reference_temperature
     denom = np.sum((w * x) ** 2)
     if denom == 0:
-        raise InputError(
-            "fit_arrhenius needs at least 1 temperature away from the reference temperature"
-        )
+        raise InputError("fit_arrhenius needs at least 1 temperature away from the reference temperature")
     slope = np.sum(w**2 * x * y) / denom
     if not slope > 0:
         raise InputError(

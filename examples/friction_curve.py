@@ -20,10 +20,7 @@ assert curve.all_converged, curve.messages
 
 peak = np.argmax(curve.friction)
 print(f"friction peak {curve.friction[peak]:.4f} at xi = {xi[peak]:.3g}")
-print(
-    f"contact area {100 * curve.contact_fraction[0]:.2f} % (slow) .. "
-    f"{100 * curve.contact_fraction[-1]:.2f} % (fast)"
-)
+print(f"contact area {100 * curve.contact_fraction[0]:.2f} % (slow) .. {100 * curve.contact_fraction[-1]:.2f} % (fast)")
 
 plt, path = figure("friction_curve")
 fig, ax = plt.subplots(figsize=(5.5, 3.6))

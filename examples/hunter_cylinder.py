@@ -26,14 +26,7 @@ for speed, colour in [(0.02, "C0"), (0.2, "C1"), (2.0, "C2")]:
         f"(relative difference {error:.1e})"
     )
     dense = np.linspace(exact.trailing_edge, exact.leading_edge, 400)
-    ax.plot(
-        1e3 * dense,
-        1e-6 * exact.pressure(dense),
-        "-",
-        color=colour,
-        lw=1,
-        label=f"Hunter, v = {speed} m/s",
-    )
+    ax.plot(1e3 * dense, 1e-6 * exact.pressure(dense), "-", color=colour, lw=1, label=f"Hunter, v = {speed} m/s")
     ax.plot(1e3 * x[::8], 1e-6 * result.pressure[::8], "o", color=colour, ms=3)
 ax.set_xlim(-2.5, 2.5)
 ax.set_xlabel("x (mm), rolling toward +x")

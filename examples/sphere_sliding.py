@@ -28,9 +28,7 @@ for ax, ratio, result in zip(axes, ratios, results):
         f"V tau/a0 = {ratio:4.2f}: friction {result.friction:.4f}, "
         f"contact area {1e6 * area:.3f} mm², peak {1e-6 * result.pressure.max():.3f} MPa"
     )
-    image = ax.pcolormesh(
-        x, x, 1e-6 * result.pressure.T, shading="nearest", cmap="viridis", vmin=0, vmax=peak
-    )
+    image = ax.pcolormesh(x, x, 1e-6 * result.pressure.T, shading="nearest", cmap="viridis", vmin=0, vmax=peak)
     ax.contour(x, x, (result.pressure > 0).T.astype(float), levels=[0.5], colors="w")
     ax.set_title(rf"$V\tau/a_0$ = {ratio:g}", fontsize=10)
     ax.set_xlabel("x (mm), sliding toward +x")

@@ -21,9 +21,7 @@ x = profile.x
 x_exact = x - x[np.argmax(profile.heights)]  # exact solution centred on the crest
 p_exact = exact.pressure(x_exact)
 error = np.linalg.norm(result.pressure - p_exact) / np.linalg.norm(p_exact)
-print(
-    f"contact fraction {result.contact_fraction:.4f}, exact {2 * exact.half_width / wavelength:.4f}"
-)
+print(f"contact fraction {result.contact_fraction:.4f}, exact {2 * exact.half_width / wavelength:.4f}")
 print(f"relative L2 pressure error {error:.2e}")
 
 plt, path = figure("westergaard")

@@ -3,6 +3,7 @@
 An independent check of the BEM: a different discretisation of the same physics. It
 shares only the material type (:class:`bem.Material`) and the error classes with ``bem``.
 """
+
 from .indentation import IndentationResult, indentation
 from .rolling import RollingResult, domain_size, rolling_cylinder
 

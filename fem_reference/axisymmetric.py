@@ -21,6 +21,7 @@ so one factorisation serves all steps, whatever their lengths.
 
 Boundary conditions: ``u_r = 0`` on the axis and on the outer side, bottom fixed.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -84,7 +85,7 @@ class AxisymmetricStepper:
         f = self.free
         rhs = np.zeros((self.n_unknowns,) + rhs_u.shape[1:])
         rhs[: f.size] = rhs_u[f]
-        rhs[f.size:] = rhs_p
+        rhs[f.size :] = rhs_p
         if not np.any(rhs):
             return np.zeros((self.ops.B.shape[1],) + rhs_u.shape[1:])
         x, res = solve_refined(self.matrix, self.factor, rhs)
@@ -120,7 +121,6 @@ class AxisymmetricStepper:
         dt = self._pending
         a, wp, wn = exponential_weights(dt / self.material.relaxation_times)
         eps_new = self.ops.B @ u
-        self.alpha = [ak * al + wpk * self.eps + wnk * eps_new
-                      for ak, wpk, wnk, al in zip(a, wp, wn, self.alpha)]
+        self.alpha = [ak * al + wpk * self.eps + wnk * eps_new for ak, wpk, wnk, al in zip(a, wp, wn, self.alpha)]
         self.eps = eps_new
         self._pending = None

@@ -19,6 +19,7 @@ unknowns per quadrature point and term from the linear system. For ``ell`` much 
 than the spacing the band fills the streamline and keeping ``alpha`` as unknowns (a
 bidiagonal block) is cheaper; :func:`band_width` measures which.
 """
+
 from __future__ import annotations
 
 import numpy as np

@@ -3,7 +3,7 @@
 The candidate surface nodes ``i`` have a depression (displacement into the solid, m)
 ``w = C lam + w0``: ``C[i, j]`` is the depression at ``i`` per unit force at ``j`` and
 ``w0`` the depression without contact forces. The rigid surface has heights ``h_i``
-positive toward the solid (SPEC §2.3), here ``h = -x^2 / (2R)``; with rigid approach
+positive toward the solid (docs/theory.md §4), here ``h = -x^2 / (2R)``; with rigid approach
 ``d`` the gap is ``g = w - (h + d)``. Conditions: ``lam >= 0``, ``g >= 0``,
 ``lam g = 0``, ``sum lam = P``.
 
@@ -13,6 +13,7 @@ K. Ito, K. Kunisch, SIAM J. Optim. 13 (2002) 865-888). On the active set ``A``, 
 It stops when the set repeats, which makes the complementarity residual zero to
 round-off; it raises :class:`bem.errors.ConvergenceError` on a cycle or ``maxiter``.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass

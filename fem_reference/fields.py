@@ -7,6 +7,7 @@ stress follows from the trace, ``sigma_zz = -3 p - sigma_xx - sigma_yy``; it is 
 ``(xx, yy, xy)`` with engineering shear strain ``gamma_xy = 2 eps_xy``. Tensors are returned
 as ``(n, 9)`` arrays in ParaView's row-major order ``xx, xy, xz, yx, yy, yz, zx, zy, zz``.
 """
+
 from __future__ import annotations
 
 import numpy as np

@@ -22,6 +22,7 @@ of arm ``k`` is ``E_k (eps - alpha_k)``.
   ``2 L / ell_k`` of the strain, so the arm differs from a spring ``E_k`` by at most
   ``(E_k / E0) 2 L / ell_k``; below ``tol`` it is added to the relaxed modulus.
 """
+
 from __future__ import annotations
 
 import numpy as np

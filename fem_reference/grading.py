@@ -11,6 +11,7 @@ constant ``cap``. Every focus point is a node. The number of elements between a 
 size ``s`` and a distance ``D`` grows like ``log(D / s) / log(ratio)``, so a scale many
 decades below the domain size costs a few tens of elements.
 """
+
 from __future__ import annotations
 
 import math

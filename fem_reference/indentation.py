@@ -7,9 +7,10 @@ grows, Lee & Radok's solution holds (E.H. Lee, J.R.M. Radok, J. Appl. Mech. 27 (
 
     a(t)^3 = (3 R / 4) P (1 - nu^2) J(t).
 
-Sphere heights ``h(r) = -r^2 / (2R)`` (positive toward the solid, SPEC §2.3); approach
+Sphere heights ``h(r) = -r^2 / (2R)`` (positive toward the solid, docs/theory.md §4); approach
 ``delta`` (m) positive into the solid; pressure positive in compression.
 """
+
 from __future__ import annotations
 
 import time
@@ -98,8 +99,9 @@ def time_grid(times, creep_times, steps_per_decade):
         return np.unique(np.concatenate([[0.0], times]))
     t0 = 1e-3 * float(np.min(creep_times))
     t1 = float(pos.max())
-    extra = np.geomspace(t0, t1, max(2, int(np.ceil(np.log10(t1 / t0) * steps_per_decade)) + 1)) \
-        if t1 > t0 else np.zeros(0)
+    extra = (
+        np.geomspace(t0, t1, max(2, int(np.ceil(np.log10(t1 / t0) * steps_per_decade)) + 1)) if t1 > t0 else np.zeros(0)
+    )
     return np.unique(np.concatenate([[0.0], times, extra]))
 
 
@@ -116,8 +118,21 @@ def _nodal_pressure(r, lam, w):
     return p
 
 
-def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5, domain=None,
-                grading=1.3, steps_per_decade=20, solver="auto", maxiter=100, vtk=None):
+def indentation(
+    material,
+    *,
+    radius,
+    load,
+    times,
+    resolution=8,
+    contact_band=1.5,
+    domain=None,
+    grading=1.3,
+    steps_per_decade=20,
+    solver="auto",
+    maxiter=100,
+    vtk=None,
+):
     """Creep indentation by a rigid sphere under a step load (axisymmetric FEM).
 
     Parameters
@@ -183,7 +198,7 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
     top = top_surface(ops.basis, axisymmetric=True)
     cand = top.x <= xb * (1 + 1e-12)
     rc = top.x[cand]
-    hc = -rc**2 / (2 * R)
+    hc = -(rc**2) / (2 * R)
     F = np.zeros((ops.basis.N, rc.size))
     F[top.ydofs[cand], np.arange(rc.size)] = -1.0  # unit downward ring forces (N)
 
@@ -206,29 +221,51 @@ def indentation(material, *, radius, load, times, resolution=8, contact_band=1.5
         active, t_prev = sol.active, t
         pres = _nodal_pressure(rc, sol.lam, top.weights[cand])
         if np.any(np.isclose(t, t_out, rtol=1e-12, atol=0)):
-            lead, _ = contact_edges(np.concatenate([-rc[:0:-1], rc]),
-                                    np.concatenate([pres[:0:-1], pres]),
-                                    np.concatenate([sol.active[:0:-1], sol.active]))
+            lead, _ = contact_edges(
+                np.concatenate([-rc[:0:-1], rc]),
+                np.concatenate([pres[:0:-1], pres]),
+                np.concatenate([sol.active[:0:-1], sol.active]),
+            )
             for _ in range(int(np.sum(np.isclose(t, t_out, rtol=1e-12, atol=0)))):
                 out["a"].append(lead)
                 out["d"].append(sol.d)
                 out["p"].append(float(pres.max()))
                 out["it"].append(sol.iterations)
                 if vtk is not None:
-                    snaps.append(dict(t=float(t), u=u_now, eps=stepper.eps, alpha=list(stepper.alpha),
-                                      pressure=pres, approach=sol.d))
+                    snaps.append(
+                        dict(
+                            t=float(t),
+                            u=u_now,
+                            eps=stepper.eps,
+                            alpha=list(stepper.alpha),
+                            pressure=pres,
+                            approach=sol.d,
+                        )
+                    )
     if vtk is not None:
         from .vtk import write_indentation
 
         write_indentation(vtk, snaps, ops, material, R, P, rc)
     return IndentationResult(
-        times=t_out, contact_radius=np.array(out["a"]), approach=np.array(out["d"]),
-        peak_pressure=np.array(out["p"]), r=rc, pressure=pres, element_size=hs.element_size,
-        domain_size=L, n_elements=hs.n_elements, n_unknowns=stepper.n_unknowns, n_steps=grid.size,
-        iterations=np.array(out["it"]), timings={"total": time.perf_counter() - t_start},
+        times=t_out,
+        contact_radius=np.array(out["a"]),
+        approach=np.array(out["d"]),
+        peak_pressure=np.array(out["p"]),
+        r=rc,
+        pressure=pres,
+        element_size=hs.element_size,
+        domain_size=L,
+        n_elements=hs.n_elements,
+        n_unknowns=stepper.n_unknowns,
+        n_steps=grid.size,
+        iterations=np.array(out["it"]),
+        timings={"total": time.perf_counter() - t_start},
         success=stepper.residual <= RESIDUAL_LIMIT and worst <= 1e-9,
-        message=_message(stepper.residual, worst), linear_residual=float(stepper.residual), residual=worst,
-        solver=stepper.factor.name)
+        message=_message(stepper.residual, worst),
+        linear_residual=float(stepper.residual),
+        residual=worst,
+        solver=stepper.factor.name,
+    )
 
 
 def _message(linear, complementarity):

@@ -22,6 +22,7 @@ Constitutive law for unit Young's modulus with constant Poisson ratio ``nu``::
 with ``m`` the trace vector, ``K = 1 / (3 (1 - 2 nu))`` the bulk modulus and
 ``D_dev = 2 G (I - m m^T / 3)`` (shear entries ``G``), ``G = 1 / (2 (1 + nu))``.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -29,8 +30,15 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["QuadratureOperators", "quadrature_operators", "deviatoric_matrix", "trace_vector",
-           "inverse_bulk_modulus", "MixedBlocks", "mixed_blocks"]
+__all__ = [
+    "QuadratureOperators",
+    "quadrature_operators",
+    "deviatoric_matrix",
+    "trace_vector",
+    "inverse_bulk_modulus",
+    "MixedBlocks",
+    "mixed_blocks",
+]
 
 
 def trace_vector(kind):
@@ -115,7 +123,7 @@ def quadrature_operators(mesh, kind="plane"):
     pts = ib.mapping.F(ib.X)  # (2, nel, nqp)
     r = pts[0]
     rows, cols, vals = [], [], []
-    gp = (np.arange(nel)[:, None] * nqp + np.arange(nqp)[None, :])  # (nel, nqp)
+    gp = np.arange(nel)[:, None] * nqp + np.arange(nqp)[None, :]  # (nel, nqp)
     for j in range(ib.Nbfun):
         f = ib.basis[j][0]
         g = f.grad  # (2 comp, 2 deriv, nel, nqp)
@@ -128,8 +136,9 @@ def quadrature_operators(mesh, kind="plane"):
             rows.append((gp * ncomp + c).ravel())
             cols.append(dof.ravel())
             vals.append(v.ravel())
-    B = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                      shape=(nel * nqp * ncomp, ib.N)).tocsr()
+    B = sp.coo_matrix(
+        (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(nel * nqp * ncomp, ib.N)
+    ).tocsr()
     B.eliminate_zeros()
 
     # element pressure basis 1, (x - xc)/hx, (y - yc)/hy
@@ -139,10 +148,16 @@ def quadrature_operators(mesh, kind="plane"):
     sx = (pts[0] - centre[0][:, None]) / half[0][:, None]
     sy = (pts[1] - centre[1][:, None]) / half[1][:, None]
     pcols = np.arange(nel)[:, None] * 3
-    N_p = sp.coo_matrix((np.concatenate([np.ones(nel * nqp), sx.ravel(), sy.ravel()]),
-                         (np.tile(gp.ravel(), 3),
-                          np.concatenate([np.broadcast_to(pcols + i, (nel, nqp)).ravel() for i in range(3)]))),
-                        shape=(nel * nqp, 3 * nel)).tocsr()
+    N_p = sp.coo_matrix(
+        (
+            np.concatenate([np.ones(nel * nqp), sx.ravel(), sy.ravel()]),
+            (
+                np.tile(gp.ravel(), 3),
+                np.concatenate([np.broadcast_to(pcols + i, (nel, nqp)).ravel() for i in range(3)]),
+            ),
+        ),
+        shape=(nel * nqp, 3 * nel),
+    ).tocsr()
 
     weights = ib.dx.ravel() * (2.0 * np.pi * r.ravel() if kind == "axi" else 1.0)
     # streamline rows: element row (from the element's lower edge) and local Gauss level
@@ -179,6 +194,11 @@ def mixed_blocks(ops, nu):
     Wd = ops.pointwise(deviatoric_matrix(ops.kind, nu))
     Wm = ops.pointwise(m[:, None])  # (ncomp*ngp, ngp)
     BtWd = (ops.B.T @ Wd).tocsr()
-    return MixedBlocks(K=(BtWd @ ops.B).tocsr(), G=(ops.B.T @ Wm @ ops.N_p).tocsr(),
-                       M=(ops.N_p.T @ sp.diags(ops.weights) @ ops.N_p).tocsr(),
-                       T=(ops.N_p.T @ Wm.T).tocsr(), BtWd=BtWd, c=inverse_bulk_modulus(nu))
+    return MixedBlocks(
+        K=(BtWd @ ops.B).tocsr(),
+        G=(ops.B.T @ Wm @ ops.N_p).tocsr(),
+        M=(ops.N_p.T @ sp.diags(ops.weights) @ ops.N_p).tocsr(),
+        T=(ops.N_p.T @ Wm.T).tocsr(),
+        BtWd=BtWd,
+        c=inverse_bulk_modulus(nu),
+    )

@@ -4,6 +4,7 @@
 (MKL PARDISO, from PyPI) is used when asked for with ``solver="pardiso"`` and installed;
 ``solver="auto"`` picks it when it is importable. See ``viscobem_bench/fem.py`` for timings.
 """
+
 from __future__ import annotations
 
 import logging

@@ -9,6 +9,7 @@ elements grows only with ``log(L / h)``.
 Geometry: ``x`` horizontal (flow axis), ``y`` vertical with the body in ``y <= 0`` and its
 free top surface at ``y = 0``; for axisymmetric meshes ``x`` is the radius ``r >= 0``.
 """
+
 from __future__ import annotations
 
 import math
@@ -60,12 +61,14 @@ def half_space_boundaries(x, y):
     def near(a, b):
         return np.abs(a - b) <= tol + 1e-12 * abs(b)
 
-    return mesh.with_boundaries({
-        "left": lambda p: near(p[0], x0),
-        "right": lambda p: near(p[0], x1),
-        "bottom": lambda p: near(p[1], y0),
-        "top": lambda p: near(p[1], 0.0),
-    })
+    return mesh.with_boundaries(
+        {
+            "left": lambda p: near(p[0], x0),
+            "right": lambda p: near(p[0], x1),
+            "bottom": lambda p: near(p[1], y0),
+            "top": lambda p: near(p[1], 0.0),
+        }
+    )
 
 
 @dataclass(frozen=True)
@@ -121,4 +124,3 @@ def half_space_mesh(core, h, *, x_range, depth, core_depth, ratio=1.2):
     mesh = half_space_boundaries(x, y)
     hc = (core[1] - core[0]) / max(1, int(math.ceil((core[1] - core[0]) / h - 1e-9)))
     return HalfSpaceMesh(mesh, x, y, float(hc), (float(x[0]), float(x[-1])), float(-y[0]))
-

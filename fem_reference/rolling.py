@@ -1,6 +1,6 @@
 """Steady rolling (or frictionless sliding) of a rigid cylinder on a viscoelastic block.
 
-Sign conventions (SPEC §2.2, stated once here): the cylinder moves in ``+x`` at speed
+Sign conventions (docs/theory.md §3, stated once here): the cylinder moves in ``+x`` at speed
 ``V``; in its frame the material flows in ``-x``, so ``+x`` is upstream and the leading
 edge. Heights of the cylinder are ``h(x) = -x^2 / (2R)`` (positive toward the solid,
 maximum 0 at its lowest point ``x = 0``). Pressure is positive in compression. The
@@ -9,6 +9,7 @@ tangential force on the cylinder is ``F_x = int p h'(x) dx = -(P / R) x_bar`` wi
 positive when the pressure shifts toward the leading edge, i.e. when energy is
 dissipated; the dissipated power per unit length is ``mu P V`` (W/m).
 """
+
 from __future__ import annotations
 
 import logging
@@ -78,7 +79,7 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     t2 = time.perf_counter()
 
     xc = top.x[cand]
-    hc = -xc**2 / (2 * R)
+    hc = -(xc**2) / (2 * R)
     centre = 0.5 * (band[0] + band[1])
     sol = solve_load_control(w_top[cand], hc, P, active=np.abs(xc - centre) <= active_width, maxiter=maxiter)
     act = np.flatnonzero(sol.active)
@@ -96,8 +97,22 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     lead, trail = contact_edges(xc, pres, sol.active)
     timings = dict(op.timings, assemble_factor=t1 - t0, flexibility=t2 - t1, contact=t3 - t2, fields=t4 - t3)
     timings["assemble"] = t1 - t0 - op.timings["factor"]
-    return dict(ops=ops, op=op, sol=sol, xc=xc, pres=pres, w=w_top[cand], edges=(trail, lead), u=u, p=p,
-                alpha=alpha, eps=eps, sigma=sigma, diss=diss, timings=timings)
+    return dict(
+        ops=ops,
+        op=op,
+        sol=sol,
+        xc=xc,
+        pres=pres,
+        w=w_top[cand],
+        edges=(trail, lead),
+        u=u,
+        p=p,
+        alpha=alpha,
+        eps=eps,
+        sigma=sigma,
+        diss=diss,
+        timings=timings,
+    )
 
 
 def _check_inputs(material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh):
@@ -122,10 +137,26 @@ def _check_inputs(material, radius, load, speed, resolution, contact_band, maxit
     return R, P, V, n_res, band, maxiter, ratio, fold
 
 
-def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_band=1.5,
-                     domain=None, grading=1.5, fold=1e-4, solver="auto", maxiter=100,
-                     keep_fields=False, vtk=None, mesh="uniform", condense="auto", layer_floor=0.01,
-                     passes=8):
+def rolling_cylinder(
+    material,
+    *,
+    radius,
+    load,
+    speed,
+    resolution=6,
+    contact_band=1.5,
+    domain=None,
+    grading=1.5,
+    fold=1e-4,
+    solver="auto",
+    maxiter=100,
+    keep_fields=False,
+    vtk=None,
+    mesh="uniform",
+    condense="auto",
+    layer_floor=0.01,
+    passes=8,
+):
     """Steady rolling of a rigid cylinder on a viscoelastic half-space (plane strain FEM).
 
     Parameters
@@ -193,7 +224,8 @@ def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_ban
         The active set does not settle, or the contact reaches the edge of the band.
     """
     R, P, V, n_res, band, maxiter, ratio, fold = _check_inputs(
-        material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh)
+        material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh
+    )
     if condense not in ("auto", True, False):
         raise InputError(f"condense must be 'auto', True or False, got {condense!r}")
     layer_floor = check_positive("layer_floor", layer_floor)
@@ -203,8 +235,9 @@ def rolling_cylinder(material, *, radius, load, speed, resolution=6, contact_ban
     if mesh == "uniform":
         material, terms, hs, out, npass = _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw)
     else:
-        material, terms, hs, out, npass = _run_graded(material, R, P, V, n_res, ratio, fold, domain,
-                                                      layer_floor, passes, kw)
+        material, terms, hs, out, npass = _run_graded(
+            material, R, P, V, n_res, ratio, fold, domain, layer_floor, passes, kw
+        )
     return _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, vtk, t_start)
 
 
@@ -217,8 +250,11 @@ def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
         a_relaxed = _hertz_half_width(material.E0, nu, R, P)
         material = material.folded(V / a_relaxed, V / h, tol=fold)
     dropped = [float(t) for t in taus if t not in material.relaxation_times]
-    terms = {"kept": material.relaxation_times.tolist(), "relaxed": [t for t in dropped if V * t < fold * h],
-             "glassy": [t for t in dropped if not V * t < fold * h]}
+    terms = {
+        "kept": material.relaxation_times.tolist(),
+        "relaxed": [t for t in dropped if V * t < fold * h],
+        "glassy": [t for t in dropped if not V * t < fold * h],
+    }
     a0 = _hertz_half_width(material.E0, nu, R, P)
     L = domain_size(material, R, P, V) if domain is None else check_positive("domain", domain)
     xb = band * a0
@@ -228,8 +264,10 @@ def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
     try:
         out = _solve_mesh(hs, material, R, P, V, (-xb, xb), active_width=a_inf, **kw)
     except _BandEdge:
-        raise ConvergenceError("the contact reached the edge of the candidate band, or the solid penetrates "
-                               "the cylinder outside it; increase contact_band") from None
+        raise ConvergenceError(
+            "the contact reached the edge of the candidate band, or the solid penetrates "
+            "the cylinder outside it; increase contact_band"
+        ) from None
     return material, terms, hs, out, 1
 
 
@@ -246,8 +284,9 @@ def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, pass
         h_edge = a_c / n_res
         if L < 8 * a_c:
             raise InputError(f"domain must be >= 8 contact half-widths = {8 * a_c!r} m, got {L!r}")
-        hs = graded_half_space((trail, lead), material, V, resolution=n_res, length=L, ratio=ratio,
-                               layer_floor=layer_floor)
+        hs = graded_half_space(
+            (trail, lead), material, V, resolution=n_res, length=L, ratio=ratio, layer_floor=layer_floor
+        )
         band = (trail - widen * a_c - h_edge, lead + widen * a_c + h_edge)
         try:
             out = _solve_mesh(hs, material, R, P, V, band, active_width=0.8 * a_c, **kw)
@@ -256,9 +295,16 @@ def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, pass
             trail, lead = trail - widen * a_c, lead + widen * a_c
             continue
         new_trail, new_lead = out["edges"]
-        log.info("graded pass %d: edges [%.6g, %.6g] -> [%.6g, %.6g], %d unknowns, %s", npass, trail, lead,
-                 new_trail, new_lead, out["op"].n_unknowns,
-                 ", ".join(f"{k} {v:.2f} s" for k, v in out["timings"].items()))
+        log.info(
+            "graded pass %d: edges [%.6g, %.6g] -> [%.6g, %.6g], %d unknowns, %s",
+            npass,
+            trail,
+            lead,
+            new_trail,
+            new_lead,
+            out["op"].n_unknowns,
+            ", ".join(f"{k} {v:.2f} s" for k, v in out["timings"].items()),
+        )
         moved = max(abs(new_trail - trail), abs(new_lead - lead))
         trail, lead = new_trail, new_lead
         if moved <= 0.25 * h_edge:
@@ -282,20 +328,59 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         problems.append(f"complementarity residual {sol.residual:.2e} > 1e-9")
     timings = dict(out["timings"], total=time.perf_counter() - t_start)
     keep = keep_fields or vtk is not None
-    fields = dict(mesh=hs.mesh, basis=ops.basis, ops=ops, u=out["u"], points=ops.points, weights=ops.weights,
-                  strain=out["eps"], stress=out["sigma"], alpha=out["alpha"], pressure=out["p"],
-                  taus=np.array(material.relaxation_times), dissipation=out["diss"]) if keep else {}
+    fields = (
+        dict(
+            mesh=hs.mesh,
+            basis=ops.basis,
+            ops=ops,
+            u=out["u"],
+            points=ops.points,
+            weights=ops.weights,
+            strain=out["eps"],
+            stress=out["sigma"],
+            alpha=out["alpha"],
+            pressure=out["p"],
+            taus=np.array(material.relaxation_times),
+            dissipation=out["diss"],
+        )
+        if keep
+        else {}
+    )
     res = RollingResult(
-        x=xc, pressure=pres, displacement=out["w"] @ sol.lam, forces=sol.lam,
-        leading_edge=lead, trailing_edge=trail,
-        friction=mu, friction_dissipation=power_fields / (P * V) if V > 0 else 0.0,
-        dissipated_power=power_fields, peak_pressure=float(pres.max()), load=P, speed=V, radius=R,
-        approach=sol.d, element_size=hs.element_size, domain_width=hs.width[1], domain_depth=hs.depth,
-        grading=ratio, n_elements=hs.n_elements, n_unknowns=op.n_unknowns, iterations=sol.iterations,
-        residual=sol.residual, material=material, success=not problems,
-        message="; ".join(problems) if problems else "converged", timings=timings, fields=fields,
-        linear_residual=lin, solver=op.factor.name, mesh=mesh, passes=npass, terms=terms,
-        condensed=tuple(bool(c) for c in op.condensed), peak_memory=_peak_memory_mib(),
+        x=xc,
+        pressure=pres,
+        displacement=out["w"] @ sol.lam,
+        forces=sol.lam,
+        leading_edge=lead,
+        trailing_edge=trail,
+        friction=mu,
+        friction_dissipation=power_fields / (P * V) if V > 0 else 0.0,
+        dissipated_power=power_fields,
+        peak_pressure=float(pres.max()),
+        load=P,
+        speed=V,
+        radius=R,
+        approach=sol.d,
+        element_size=hs.element_size,
+        domain_width=hs.width[1],
+        domain_depth=hs.depth,
+        grading=ratio,
+        n_elements=hs.n_elements,
+        n_unknowns=op.n_unknowns,
+        iterations=sol.iterations,
+        residual=sol.residual,
+        material=material,
+        success=not problems,
+        message="; ".join(problems) if problems else "converged",
+        timings=timings,
+        fields=fields,
+        linear_residual=lin,
+        solver=op.factor.name,
+        mesh=mesh,
+        passes=npass,
+        terms=terms,
+        condensed=tuple(bool(c) for c in op.condensed),
+        peak_memory=_peak_memory_mib(),
     )
     if vtk is not None:
         from .vtk import write_fields
@@ -303,8 +388,18 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         write_fields(vtk, res.fields, res)
         if not keep_fields:
             res = _drop_fields(res)
-    log.info("rolling V=%g (%s mesh, %d passes): mu=%.6g, edges [%g, %g], %d unknowns, %.1f s, %s", V, mesh,
-             npass, mu, trail, lead, op.n_unknowns, timings["total"], res.message)
+    log.info(
+        "rolling V=%g (%s mesh, %d passes): mu=%.6g, edges [%g, %g], %d unknowns, %.1f s, %s",
+        V,
+        mesh,
+        npass,
+        mu,
+        trail,
+        lead,
+        op.n_unknowns,
+        timings["total"],
+        res.message,
+    )
     return res
 
 

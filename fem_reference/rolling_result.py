@@ -1,4 +1,5 @@
 """The result of :func:`fem_reference.rolling_cylinder` (SI units)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -25,7 +26,7 @@ class RollingResult:
     leading_edge, trailing_edge : float
         Contact edges (m), leading at ``+x``.
     friction : float
-        ``mu = x_bar / R`` from the moment of the nodal forces (SPEC eq. 6).
+        ``mu = x_bar / R`` from the moment of the nodal forces (the seed paper's eq. 6, docs/theory.md §4.3).
     friction_dissipation : float
         Viscous dissipation integrated over the block, over ``P V`` (0 at ``V = 0``). The
         two forms converge together; against Hunter's exact solution at 3 elements per

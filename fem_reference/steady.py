@@ -1,7 +1,7 @@
 """Monolithic steady-rolling operator of a viscoelastic block (plane strain).
 
 Frame: the indenter's. Material flows through the fixed mesh at ``-V e_x``; upstream
-(inflow, the indenter's leading side) is ``+x``. Material (SPEC §2.1, Prony form, one
+(inflow, the indenter's leading side) is ``+x``. Material (docs/theory.md §2, Prony form, one
 Poisson ratio for every term)::
 
     sigma = D(nu) [E_inf eps - sum_k E_k alpha_k],    -V tau_k d(alpha_k)/dx + alpha_k = eps,
@@ -28,6 +28,7 @@ monolithic system fills under SuperLU.
 Boundary conditions: bottom fixed, sides on rollers (``u_x = 0``), top free except for
 the contact forces.
 """
+
 from __future__ import annotations
 
 import time
@@ -89,7 +90,7 @@ class SteadyOperator:
         u = np.zeros(forces.shape)
         u[self.free] = x[: self.free.size]
         off = self.free.size
-        p = self.ops.N_p @ x[off: off + npr] * E
+        p = self.ops.N_p @ x[off : off + npr] * E
         off += npr
         alpha = []
         eps = None
@@ -99,7 +100,7 @@ class SteadyOperator:
                     eps = self.ops.B @ u
                 alpha.append(viscous_strain(self.ops, self.speed * tau, eps))
             else:
-                alpha.append(x[off: off + self.sizes[2]])
+                alpha.append(x[off : off + self.sizes[2]])
                 off += self.sizes[2]
         return u, p, alpha
 
@@ -122,8 +123,13 @@ def _fixed_dofs(basis):
 
 def condensable(ops, material, speed, max_band=8.0):
     """Mask of the terms whose truncated memory couples at most ``max_band`` points on average."""
-    return np.array([speed * tau > 0 and band_width(ops.row, ops.points[0], speed * tau) <= max_band
-                     for tau in material.relaxation_times], dtype=bool)
+    return np.array(
+        [
+            speed * tau > 0 and band_width(ops.row, ops.points[0], speed * tau) <= max_band
+            for tau in material.relaxation_times
+        ],
+        dtype=bool,
+    )
 
 
 def steady_operator(ops, material, speed, *, solver="auto", condense=False):
@@ -162,8 +168,7 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False):
     Kv = (BtWd[free] @ Bv).tocsr()
     Gf = mb.G[free]
     mono = np.flatnonzero(~cmask)
-    blocks = [[Kv, -Gf] + [-g[k] * BtWd[free] for k in mono],
-              [-(T @ Bv), -c * M] + [g[k] * T for k in mono]]
+    blocks = [[Kv, -Gf] + [-g[k] * BtWd[free] for k in mono], [-(T @ Bv), -c * M] + [g[k] * T for k in mono]]
     for i, k in enumerate(mono):
         Lk, Rk = streamline_operators(ops.row, ops.points[0], speed * material.relaxation_times[k])
         row = [-(sp.kron(Rk, eye) @ Bf), None] + [None] * mono.size
@@ -173,9 +178,18 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False):
     t1 = time.perf_counter()
     fac = factorize(A, solver)
     t2 = time.perf_counter()
-    return SteadyOperator(ops, material, float(speed), free, (free.size, M.shape[0], ncomp * ops.n_points),
-                          fac, A.shape[0], matrix=A.tocsr(), condensed=cmask,
-                          timings={"assemble": t1 - t0, "factor": t2 - t1})
+    return SteadyOperator(
+        ops,
+        material,
+        float(speed),
+        free,
+        (free.size, M.shape[0], ncomp * ops.n_points),
+        fac,
+        A.shape[0],
+        matrix=A.tocsr(),
+        condensed=cmask,
+        timings={"assemble": t1 - t0, "factor": t2 - t1},
+    )
 
 
 def stress_and_dissipation(ops, material, u, p, alpha):

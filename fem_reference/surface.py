@@ -5,6 +5,7 @@ Pressure is recovered from consistent nodal forces: ``p_i = lam_i / w_i`` with
 edge of length ``D`` the weights are ``D/6, 2D/3, D/6`` (end, middle, end); a uniform
 pressure is recovered exactly.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass

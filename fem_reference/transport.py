@@ -20,6 +20,7 @@ exact in both limits (``z -> inf``: ``alpha = eps``, relaxed; ``z -> 0``: ``alph
 glassy), unconditionally stable and second order in the point spacing (exponential time
 differencing; R.L. Taylor, K.S. Pister, G.L. Goudreau, IJNME 2 (1970) 45-59).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -94,12 +95,14 @@ def streamline_operators(keys, x, ell):
     a, w_prev, w_next = exponential_weights(z)
     diag_r = np.ones(n)
     diag_r[nxt] = w_next
-    L = sp.coo_matrix((np.concatenate([np.ones(n), -a]),
-                       (np.concatenate([np.arange(n), nxt]), np.concatenate([np.arange(n), prev]))),
-                      shape=(n, n)).tocsr()
-    R = sp.coo_matrix((np.concatenate([diag_r, w_prev]),
-                       (np.concatenate([np.arange(n), nxt]), np.concatenate([np.arange(n), prev]))),
-                      shape=(n, n)).tocsr()
+    L = sp.coo_matrix(
+        (np.concatenate([np.ones(n), -a]), (np.concatenate([np.arange(n), nxt]), np.concatenate([np.arange(n), prev]))),
+        shape=(n, n),
+    ).tocsr()
+    R = sp.coo_matrix(
+        (np.concatenate([diag_r, w_prev]), (np.concatenate([np.arange(n), nxt]), np.concatenate([np.arange(n), prev]))),
+        shape=(n, n),
+    ).tocsr()
     return L, R
 
 

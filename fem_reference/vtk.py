@@ -30,6 +30,7 @@ block; ``pressure``, ``gap``, ``contact``, ``depression`` on the interface; fiel
 ``load`` (N), ``radius``, the material and ``units``. (The pressure unknown of the mixed solve is
 not kept by the time stepper, so the block carries no stress.)
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -38,12 +39,13 @@ import numpy as np
 
 from . import fields as derived
 
-__all__ = ["write_fields", "write_indentation", "volume_grid", "interface_points", "metadata", "UNITS",
-           "COMPONENTS"]
+__all__ = ["write_fields", "write_indentation", "volume_grid", "interface_points", "metadata", "UNITS", "COMPONENTS"]
 
-UNITS = ("SI units: lengths and displacements m, stresses and pressures Pa, speed m/s, load N/m (per unit "
-         "length in z), times s, dissipation W/m^3; strains dimensionless (tensor components, not engineering "
-         "shear); pressure and hydrostatic_pressure positive in compression; the cylinder moves in +x")
+UNITS = (
+    "SI units: lengths and displacements m, stresses and pressures Pa, speed m/s, load N/m (per unit "
+    "length in z), times s, dissipation W/m^3; strains dimensionless (tensor components, not engineering "
+    "shear); pressure and hydrostatic_pressure positive in compression; the cylinder moves in +x"
+)
 COMPONENTS = ("XX", "XY", "XZ", "YX", "YY", "YZ", "ZX", "ZY", "ZZ")
 
 
@@ -89,8 +91,7 @@ def volume_grid(fields, material=None):
     grid.cell_data["dissipation"] = _cell_average(fields["dissipation"], weights, nel)[:, 0]
     taus = material.relaxation_times if material is not None else range(len(fields["alpha"]))
     for tau, a in zip(taus, fields["alpha"]):
-        grid.cell_data[tau_name(tau)] = _cell_average(derived.strain_tensor(np.asarray(a).reshape(-1, 3)),
-                                                      weights, nel)
+        grid.cell_data[tau_name(tau)] = _cell_average(derived.strain_tensor(np.asarray(a).reshape(-1, 3)), weights, nel)
     _name_components(grid)
     return grid
 
@@ -132,9 +133,16 @@ def metadata(result):
     m = result.material
     a0 = _hertz_half_width(m.E0, m.nu, result.radius, result.load)
     lam = float(np.max(m.creep_times)) if m.creep_times.size else 0.0
-    return dict(speed=[result.speed], load=[result.load], radius=[result.radius], **_material_data(m),
-                dimensionless_speed=[result.speed * lam / a0], friction=[result.friction], approach=[result.approach],
-                units=[UNITS])
+    return dict(
+        speed=[result.speed],
+        load=[result.load],
+        radius=[result.radius],
+        **_material_data(m),
+        dimensionless_speed=[result.speed * lam / a0],
+        friction=[result.friction],
+        approach=[result.approach],
+        units=[UNITS],
+    )
 
 
 def _add_field_data(dataset, meta):
@@ -218,11 +226,20 @@ def write_indentation(path, snapshots, ops, material, radius, load, r):
         name = f"{path.stem}_{k:03d}.vtm"
         _indentation_snapshot(snap, ops, material, radius, np.asarray(r, float), top, meta).save(path.parent / name)
         entries.append(f"  <DataSet timestep={quoteattr(repr(snap['t']))} file={quoteattr(name)}/>")
-    path.write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
-                    + "\n".join(entries) + "\n</Collection>\n</VTKFile>\n")
+    path.write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
+        + "\n".join(entries)
+        + "\n</Collection>\n</VTKFile>\n"
+    )
     return path
 
 
 def _material_data(m):
-    return dict(E0=[m.E0], E_inf=[m.E_inf], nu=[m.nu], prony_moduli=np.asarray(m.moduli, float),
-                relaxation_times=np.asarray(m.relaxation_times, float), creep_times=np.asarray(m.creep_times, float))
+    return dict(
+        E0=[m.E0],
+        E_inf=[m.E_inf],
+        nu=[m.nu],
+        prony_moduli=np.asarray(m.moduli, float),
+        relaxation_times=np.asarray(m.relaxation_times, float),
+        creep_times=np.asarray(m.creep_times, float),
+    )

@@ -7,6 +7,7 @@ Materials
 - ``prony30``: a rubber-like series of 30 relaxation terms with times log-spaced over
   12 decades (1e-6 to 1e6 s) and ``E_inf/E0 = 1e4`` (``E0 = 1e6 Pa``).
 """
+
 import contextlib
 
 import numpy as np
@@ -15,8 +16,10 @@ import pytest
 try:
     from threadpoolctl import threadpool_limits
 except ImportError:  # only a speed-up: single-threaded BLAS for many small dense solves
+
     def threadpool_limits(**_):
         return contextlib.nullcontext()
+
 
 from bem import Material
 from validation.periodic_exact import murty_lcp  # the dense reference's LCP solver (Murty)

@@ -3,6 +3,7 @@
 Conventions as in :mod:`bem.adaptive`: the indenter moves in +x, heights positive toward the
 half-space, coordinates centred on the domain.
 """
+
 import numpy as np
 import pytest
 from scipy import integrate
@@ -25,7 +26,7 @@ def cylinder(material, load, n, width=4.0):
     a = line_contact(material.E0, material.nu, R, load).a
     length = width * a
     x = (np.arange(n) + 0.5) * length / n - length / 2
-    return surfaces.from_heights(-x**2 / (2 * R), length, centered=True)
+    return surfaces.from_heights(-(x**2) / (2 * R), length, centered=True)
 
 
 def sphere(material, load, n, width=3.0):
@@ -42,8 +43,7 @@ def test_love_rectangle_every_quadrant(point):
     # Love's corner sum vs brute-force integration of 1/r over the rectangle [0,1]x[0,2]
     # (point outside or inside; the unsigned form fails outside the first quadrant)
     x, y = point
-    ref = integrate.dblquad(lambda t, s: 1.0 / np.hypot(s - x, t - y), 0.0, 1.0, 0.0, 2.0,
-                            epsabs=0, epsrel=1e-11)[0]
+    ref = integrate.dblquad(lambda t, s: 1.0 / np.hypot(s - x, t - y), 0.0, 1.0, 0.0, 2.0, epsabs=0, epsrel=1e-11)[0]
     got = square._rect(x, y, 0.0, 1.0, 0.0, 2.0, love_corner)
     assert got == pytest.approx(ref, rel=1e-8)  # quadrature of an integrable 1/r: ~1e-10
 
@@ -57,8 +57,15 @@ def test_creep_table_vs_quadrature(shift):
     for i, j in [(0, 0), (1, 0), (-1, 1), (3, 2), (-7, 0), (12, 12), (-12, 5)]:
         X, Y = i * h / 2, j * h / 2
         pts = [z for z in ((-h / 2 - X) / shift, (h / 2 - X) / shift) if z > 0]
-        ref = integrate.quad(lambda z, X=X, Y=Y: np.exp(-z) * square._cell_influence(X + shift * z, Y, h), 0, 60,
-                             points=pts or None, limit=800, epsabs=0, epsrel=1e-12)[0]
+        ref = integrate.quad(
+            lambda z, X=X, Y=Y: np.exp(-z) * square._cell_influence(X + shift * z, Y, h),
+            0,
+            60,
+            points=pts or None,
+            limit=800,
+            epsabs=0,
+            epsrel=1e-12,
+        )[0]
         assert table[i + 2 * n, j] == pytest.approx(ref, rel=1e-9)
 
 
@@ -69,8 +76,11 @@ def test_strip_coefficients_match_bruteforce_line():
     x = mesh.centres()[:, 0]
     for speed in (0.0, 1e-3, 0.2, 30.0):
         K, _ = adaptive.influence_matrix(mesh, SLS, speed)
-        ref = strip_kernel(x[:, None] - x[None, :], mesh.spacing, SLS, speed) if speed else \
-            strip_kernel(x[:, None] - x[None, :], mesh.spacing, Material.elastic(SLS.E0), 0.0)
+        ref = (
+            strip_kernel(x[:, None] - x[None, :], mesh.spacing, SLS, speed)
+            if speed
+            else strip_kernel(x[:, None] - x[None, :], mesh.spacing, Material.elastic(SLS.E0), 0.0)
+        )
         assert np.ptp(K - ref) <= 1e-11 * np.abs(K).max()  # round-off of O(1e3)-term sums
 
 
@@ -79,7 +89,7 @@ def test_strip_coefficients_match_bruteforce_line():
 def test_strip_creep_no_cancellation_at_large_shift():
     # v lambda / dx = 3e7: the difference of one strip's creep coefficient between two points
     # by quadrature of the (accurate) elastic difference vs the closed form; the naive
-    # formula loses ~7 digits here (SPEC §7)
+    # formula loses ~7 digits here (docs/theory.md §12)
     mesh = adaptive.uniform_mesh(16, 1e-3, 1, 1)
     speed = 3e4 * mesh.spacing / SLS.creep_times[0] * 1e3
     K, _ = adaptive.influence_matrix(mesh, SLS, speed)
@@ -96,8 +106,17 @@ def test_strip_creep_no_cancellation_at_large_shift():
     # geometric in z plus the kinks, each integrated by adaptive quadrature
     kinks = [z for z in ((e - xx) / shift for e in (x1, x2) for xx in (x[2], x[9])) if z > 0]
     edges = np.unique(np.concatenate([[0.0], kinks, np.geomspace(1e-10, 60, 25)]))
-    diff = sum(integrate.quad(lambda z: np.exp(-z) * (lam(x[2] + shift * z) - lam(x[9] + shift * z)), a, b,
-                              limit=100, epsabs=0, epsrel=1e-10)[0] for a, b in zip(edges[:-1], edges[1:]))
+    diff = sum(
+        integrate.quad(
+            lambda z: np.exp(-z) * (lam(x[2] + shift * z) - lam(x[9] + shift * z)),
+            a,
+            b,
+            limit=100,
+            epsabs=0,
+            epsrel=1e-10,
+        )[0]
+        for a, b in zip(edges[:-1], edges[1:])
+    )
     elastic_part = (lam(x[2]) - lam(x[9])) / SLS.E_inf
     got = K[2, 5] - K[9, 5]
     assert got == pytest.approx(factor * (elastic_part + Ck * diff), rel=1e-7)
@@ -227,8 +246,9 @@ def test_sphere_height_callable_matches_sampled():
     load = 1.0
     s = sphere(SLS, load, 32)
     res_s = adaptive.solve_adaptive(s, SLS, speed=0.01, load=load, levels=2)
-    res_c = adaptive.solve_adaptive(s, SLS, speed=0.01, load=load, levels=2,
-                                    height=lambda x, y: -(x**2 + y**2) / (2 * R))
+    res_c = adaptive.solve_adaptive(
+        s, SLS, speed=0.01, load=load, levels=2, height=lambda x, y: -(x**2 + y**2) / (2 * R)
+    )
     # interpolated (centre of 2x2 cells) vs exact centre heights differ by (dx/2)^2/(2R) on
     # coarse elements only, all out of contact: results agree closely
     assert res_c.friction == pytest.approx(res_s.friction, rel=1e-3)
@@ -256,12 +276,22 @@ def test_inputs_unmodified():
     assert np.array_equal(s.heights, before)
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    (dict(levels=9), "levels"), (dict(levels=-1), "levels"), (dict(speed=-1.0), "speed"),
-    (dict(load=0.0), "load"), (dict(rtol=2.0), "rtol"), (dict(sampling="corner"), "sampling"),
-    (dict(height=3.0), "height"), (dict(gradient=0.0), "gradient"), (dict(buffer=-1.0), "buffer"),
-    (dict(max_elements=10), "max_elements"), (dict(maxiter=0), "maxiter"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(levels=9), "levels"),
+        (dict(levels=-1), "levels"),
+        (dict(speed=-1.0), "speed"),
+        (dict(load=0.0), "load"),
+        (dict(rtol=2.0), "rtol"),
+        (dict(sampling="corner"), "sampling"),
+        (dict(height=3.0), "height"),
+        (dict(gradient=0.0), "gradient"),
+        (dict(buffer=-1.0), "buffer"),
+        (dict(max_elements=10), "max_elements"),
+        (dict(maxiter=0), "maxiter"),
+    ],
+)
 def test_bad_input(kwargs, name):
     s = cylinder(SLS, 1000.0, 128)
     args = dict(speed=0.1, load=1000.0, levels=2) | kwargs

@@ -1,4 +1,5 @@
-"""Anisotropy measures (SPEC §2.5): exact spectral moments and the contact-indicator PSD."""
+"""Anisotropy measures (docs/theory.md §6): exact spectral moments and the contact-indicator PSD."""
+
 import numpy as np
 import pytest
 from scipy.optimize import brentq
@@ -125,13 +126,16 @@ def test_contact_psd_of_an_ensemble_is_the_mean_and_starts_at_one():
     assert cp.c0 == pytest.approx(expected, rel=0.5)  # a local average of ~6 modes x 3 maps
 
 
-@pytest.mark.parametrize("call, word", [
-    (lambda: an.spectral_moments(np.zeros(8), 1.0), "field"),
-    (lambda: an.spectral_moments(np.zeros((8, 8)), -1.0), "length"),
-    (lambda: an.contact_psd(np.full((8, 8), 0.5), 1.0), "chi"),
-    (lambda: an.contact_psd(np.zeros((8, 8)), 1.0, smoothing=10.0), "smoothing"),
-    (lambda: an.psd_contour(an.contact_psd(_ellipse(64, 0.1, 0.1), 1.0), 1.5), "level"),
-])
+@pytest.mark.parametrize(
+    "call, word",
+    [
+        (lambda: an.spectral_moments(np.zeros(8), 1.0), "field"),
+        (lambda: an.spectral_moments(np.zeros((8, 8)), -1.0), "length"),
+        (lambda: an.contact_psd(np.full((8, 8), 0.5), 1.0), "chi"),
+        (lambda: an.contact_psd(np.zeros((8, 8)), 1.0, smoothing=10.0), "smoothing"),
+        (lambda: an.psd_contour(an.contact_psd(_ellipse(64, 0.1, 0.1), 1.0), 1.5), "level"),
+    ],
+)
 def test_bad_input_names_the_parameter(call, word):
     with pytest.raises(InputError, match=word):
         call()

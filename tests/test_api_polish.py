@@ -1,5 +1,6 @@
 """The public API's manners: mistyped keywords are named, numbers are required where numbers
 are meant, messages show plain numbers, results print in one short line."""
+
 import numpy as np
 import pytest
 
@@ -20,8 +21,15 @@ def test_a_mistyped_keyword_is_named_with_the_closest_valid_one():
     with pytest.raises(InputError, match=r"'rtl' \(did you mean 'rtol'\?\)"):
         bem.solve(S, ELASTIC, speed=0.0, load=0.3, rtl=1e-6)
     with pytest.raises(InputError, match=r"'level' \(did you mean 'levels'\?\)"):
-        bem.solve(surfaces.sphere(radius=1e-2, n=32, length=2e-3), ELASTIC, speed=0.0, load=1.0,
-                  periodic=False, method="adaptive", level=2)
+        bem.solve(
+            surfaces.sphere(radius=1e-2, n=32, length=2e-3),
+            ELASTIC,
+            speed=0.0,
+            load=1.0,
+            periodic=False,
+            method="adaptive",
+            level=2,
+        )
 
 
 def test_an_adaptive_option_without_the_adaptive_method_says_so():
@@ -32,13 +40,21 @@ def test_an_adaptive_option_without_the_adaptive_method_says_so():
 def test_solve_passes_on_exactly_the_adaptive_solvers_own_options():
     import inspect
 
-    own = set(inspect.signature(solve_adaptive).parameters) - {"surface", "material", "speed", "load", "rtol",
-                                                                "maxiter", "raise_on_failure"}
+    own = set(inspect.signature(solve_adaptive).parameters) - {
+        "surface",
+        "material",
+        "speed",
+        "load",
+        "rtol",
+        "maxiter",
+        "raise_on_failure",
+    }
     assert own == set(ADAPTIVE_OPTIONS)
 
 
-@pytest.mark.parametrize("name, value", [("speed", "0.01"), ("load", "1"), ("rtol", "1e-8"), ("speed", True),
-                                         ("load", b"1"), ("speed", 1j)])
+@pytest.mark.parametrize(
+    "name, value", [("speed", "0.01"), ("load", "1"), ("rtol", "1e-8"), ("speed", True), ("load", b"1"), ("speed", 1j)]
+)
 def test_numbers_are_required_where_numbers_are_meant(name, value):
     kw = {"speed": 0.0, "load": 1.0} | {name: value}
     with pytest.raises(InputError, match=rf"^{name} must be a real number.*got {value!r}"):
@@ -51,11 +67,13 @@ def test_approach_as_a_string_is_refused():
 
 
 def test_messages_show_plain_numbers():
-    for call in (lambda: bem.solve(S, ELASTIC, speed=0.0, load=np.float64(-1.0)),
-                 lambda: bem.solve(S, ELASTIC, speed=np.float32(-2.0), load=1.0),
-                 lambda: bem.solve(S, ELASTIC, speed=0.0, load=1.0, rtol=np.float64(2.0)),
-                 lambda: check_range("hurst", np.float64(1.5), np.float64(0.0), np.float64(1.0)),
-                 lambda: surfaces.sinusoid(np.int64(1), 1e-3, amplitude=1e-6)):
+    for call in (
+        lambda: bem.solve(S, ELASTIC, speed=0.0, load=np.float64(-1.0)),
+        lambda: bem.solve(S, ELASTIC, speed=np.float32(-2.0), load=1.0),
+        lambda: bem.solve(S, ELASTIC, speed=0.0, load=1.0, rtol=np.float64(2.0)),
+        lambda: check_range("hurst", np.float64(1.5), np.float64(0.0), np.float64(1.0)),
+        lambda: surfaces.sinusoid(np.int64(1), 1e-3, amplitude=1e-6),
+    ):
         with pytest.raises(InputError) as err:
             call()
         assert "np." not in str(err.value) and "float64" not in str(err.value)
@@ -82,7 +100,10 @@ def test_results_print_one_short_line():
     sphere = surfaces.sphere(radius=1e-2, n=32, length=2e-3)
     adaptive = bem.solve(sphere, ELASTIC, speed=0.0, load=1.0, periodic=False, method="adaptive", levels=1)
     assert repr(adaptive).startswith("AdaptiveResult(converged, shape=(32, 32),") and len(repr(adaptive)) < 300
-    curve = bem.friction_curve(S, bem.Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=0.01),
-                               speeds=[1e-3, 1e-2], load=0.3)
-    assert repr(curve).startswith("FrictionCurve(load=0.3, 2 speeds from 0.001 to 0.01 m/s, 2 converged, peak friction ")
+    curve = bem.friction_curve(
+        S, bem.Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=0.01), speeds=[1e-3, 1e-2], load=0.3
+    )
+    assert repr(curve).startswith(
+        "FrictionCurve(load=0.3, 2 speeds from 0.001 to 0.01 m/s, 2 converged, peak friction "
+    )
     assert len(repr(curve)) < 200

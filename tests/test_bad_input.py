@@ -1,4 +1,5 @@
 """Bad input raises bem.errors.InputError (a ValueError) whose message names the parameter."""
+
 import numpy as np
 import pytest
 
@@ -11,50 +12,55 @@ NAN = float("nan")
 SLS = dict(E0=1e6, E_inf=1e7)
 
 
-@pytest.mark.parametrize("build, name", [
-    (lambda: Material.elastic(0.0), "E"),
-    (lambda: Material.elastic(-1e6), "E"),
-    (lambda: Material.elastic(NAN), "E"),
-    (lambda: Material.elastic(np.inf), "E"),
-    (lambda: Material.elastic("stiff"), "E"),
-    (lambda: Material.elastic(1e6, nu=0.6), "nu"),
-    (lambda: Material.elastic(1e6, nu=-0.1), "nu"),
-    (lambda: Material.elastic(1e6, nu=NAN), "nu"),
-    (lambda: Material.standard_linear_solid(E0=1e7, E_inf=1e7, creep_time=1.0), "E_inf"),
-    (lambda: Material.standard_linear_solid(E0=1e7, E_inf=1e6, creep_time=1.0), "E_inf"),
-    (lambda: Material.standard_linear_solid(E0=0.0, E_inf=1e6, creep_time=1.0), "E0"),
-    (lambda: Material.standard_linear_solid(E0=NAN, E_inf=1e6, creep_time=1.0), "E0"),
-    (lambda: Material.standard_linear_solid(**SLS), "relaxation_time or creep_time"),
-    (lambda: Material.standard_linear_solid(**SLS, creep_time=1.0, relaxation_time=0.1),
-     "relaxation_time or creep_time"),
-    (lambda: Material.standard_linear_solid(**SLS, creep_time=0.0), "creep_time"),
-    (lambda: Material.standard_linear_solid(**SLS, relaxation_time=-1.0), "relaxation_time"),
-    (lambda: Material.standard_linear_solid(**SLS, relaxation_time=NAN), "relaxation_time"),
-    (lambda: Material.standard_linear_solid(**SLS, creep_time=1.0, nu=0.7), "nu"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[1e6, 2e6], times=[1.0]), "moduli and times"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[1e6], times=[0.0]), "times"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[1e6], times=[-1.0]), "times"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[1e6], times=[NAN]), "times"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[-1e6], times=[1.0]), "moduli"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[NAN], times=[1.0]), "moduli"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[1e6, 1e6], times=[1.0, 1.0]), "times"),
-    (lambda: Material.from_prony(E0=-1e6, moduli=[1e6], times=[1.0]), "E0"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[[1e6]], times=[[1.0]]), "moduli"),
-    (lambda: Material.from_prony(E0=1e6, moduli=[1e6], times=[1.0], nu=0.51), "nu"),
-    (lambda: Material.from_creep(E0=1e6, compliances=[1e-7, 1e-7], times=[1.0]), "compliances and times"),
-    (lambda: Material.from_creep(E0=1e6, compliances=[-1e-7], times=[1.0]), "compliances"),
-    (lambda: Material.from_creep(E0=1e6, compliances=[1e-6], times=[1.0]), "compliances"),  # E_inf = inf
-    (lambda: Material.from_creep(E0=1e6, compliances=[1e-7], times=[0.0]), "times"),
-    (lambda: Material.from_creep(E0=1e6, compliances=[NAN], times=[1.0]), "compliances"),
-    (lambda: Material.fit_prony([1.0, 2.0], [1e6, 1e6], [1e5]), "frequencies, storage and loss"),
-    (lambda: Material.fit_prony([1.0, 2.0], [1e6, 1e6], [1e5, -1e5]), "loss"),
-    (lambda: Material.fit_prony([0.0, 2.0], [1e6, 1e6], [1e5, 1e5]), "frequencies"),
-    (lambda: Material.fit_prony([1.0, 2.0], [1e6, NAN], [1e5, 1e5]), "storage"),
-    (lambda: Material.fit_prony([1.0, 2.0], [1e6, 1e6], [1e5, 1e5], times=[-1.0]), "times"),
-    (lambda: Material.fit_prony([1.0, 2.0], [1e6, 1e6], [1e5, 1e5], terms_per_decade=0), "terms_per_decade"),
-    (lambda: Material.elastic(1e6).folded(-1.0, 1.0), "w_min"),
-    (lambda: Material.elastic(1e6).folded(1.0, 0.0), "w_max"),
-])
+@pytest.mark.parametrize(
+    "build, name",
+    [
+        (lambda: Material.elastic(0.0), "E"),
+        (lambda: Material.elastic(-1e6), "E"),
+        (lambda: Material.elastic(NAN), "E"),
+        (lambda: Material.elastic(np.inf), "E"),
+        (lambda: Material.elastic("stiff"), "E"),
+        (lambda: Material.elastic(1e6, nu=0.6), "nu"),
+        (lambda: Material.elastic(1e6, nu=-0.1), "nu"),
+        (lambda: Material.elastic(1e6, nu=NAN), "nu"),
+        (lambda: Material.standard_linear_solid(E0=1e7, E_inf=1e7, creep_time=1.0), "E_inf"),
+        (lambda: Material.standard_linear_solid(E0=1e7, E_inf=1e6, creep_time=1.0), "E_inf"),
+        (lambda: Material.standard_linear_solid(E0=0.0, E_inf=1e6, creep_time=1.0), "E0"),
+        (lambda: Material.standard_linear_solid(E0=NAN, E_inf=1e6, creep_time=1.0), "E0"),
+        (lambda: Material.standard_linear_solid(**SLS), "relaxation_time or creep_time"),
+        (
+            lambda: Material.standard_linear_solid(**SLS, creep_time=1.0, relaxation_time=0.1),
+            "relaxation_time or creep_time",
+        ),
+        (lambda: Material.standard_linear_solid(**SLS, creep_time=0.0), "creep_time"),
+        (lambda: Material.standard_linear_solid(**SLS, relaxation_time=-1.0), "relaxation_time"),
+        (lambda: Material.standard_linear_solid(**SLS, relaxation_time=NAN), "relaxation_time"),
+        (lambda: Material.standard_linear_solid(**SLS, creep_time=1.0, nu=0.7), "nu"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[1e6, 2e6], times=[1.0]), "moduli and times"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[1e6], times=[0.0]), "times"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[1e6], times=[-1.0]), "times"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[1e6], times=[NAN]), "times"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[-1e6], times=[1.0]), "moduli"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[NAN], times=[1.0]), "moduli"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[1e6, 1e6], times=[1.0, 1.0]), "times"),
+        (lambda: Material.from_prony(E0=-1e6, moduli=[1e6], times=[1.0]), "E0"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[[1e6]], times=[[1.0]]), "moduli"),
+        (lambda: Material.from_prony(E0=1e6, moduli=[1e6], times=[1.0], nu=0.51), "nu"),
+        (lambda: Material.from_creep(E0=1e6, compliances=[1e-7, 1e-7], times=[1.0]), "compliances and times"),
+        (lambda: Material.from_creep(E0=1e6, compliances=[-1e-7], times=[1.0]), "compliances"),
+        (lambda: Material.from_creep(E0=1e6, compliances=[1e-6], times=[1.0]), "compliances"),  # E_inf = inf
+        (lambda: Material.from_creep(E0=1e6, compliances=[1e-7], times=[0.0]), "times"),
+        (lambda: Material.from_creep(E0=1e6, compliances=[NAN], times=[1.0]), "compliances"),
+        (lambda: Material.fit_prony([1.0, 2.0], [1e6, 1e6], [1e5]), "frequencies, storage and loss"),
+        (lambda: Material.fit_prony([1.0, 2.0], [1e6, 1e6], [1e5, -1e5]), "loss"),
+        (lambda: Material.fit_prony([0.0, 2.0], [1e6, 1e6], [1e5, 1e5]), "frequencies"),
+        (lambda: Material.fit_prony([1.0, 2.0], [1e6, NAN], [1e5, 1e5]), "storage"),
+        (lambda: Material.fit_prony([1.0, 2.0], [1e6, 1e6], [1e5, 1e5], times=[-1.0]), "times"),
+        (lambda: Material.fit_prony([1.0, 2.0], [1e6, 1e6], [1e5, 1e5], terms_per_decade=0), "terms_per_decade"),
+        (lambda: Material.elastic(1e6).folded(-1.0, 1.0), "w_min"),
+        (lambda: Material.elastic(1e6).folded(1.0, 0.0), "w_max"),
+    ],
+)
 def test_material_rejects(build, name):
     with pytest.raises(InputError, match=name):
         build()
@@ -64,39 +70,45 @@ SURFACE = surfaces.sinusoid(64, 1e-3, amplitude=1e-6)
 MAT = Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=0.01)
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    (dict(speed=0.1, load=0.0), "load"),
-    (dict(speed=0.1, load=-1.0), "load"),
-    (dict(speed=0.1, load=NAN), "load"),
-    (dict(speed=0.1, load=np.inf), "load"),
-    (dict(speed=0.1), "load"),  # neither load nor approach
-    (dict(speed=0.1, load=1.0, approach=1e-7), "load"),  # both
-    (dict(speed=0.1, approach=-1e-7), "approach"),
-    (dict(speed=0.1, approach=NAN), "approach"),
-    (dict(speed=-0.1, load=1.0), "speed"),
-    (dict(speed=NAN, load=1.0), "speed"),
-    (dict(speed=np.inf, load=1.0), "speed"),
-    (dict(speed="fast", load=1.0), "speed"),
-    (dict(speed=0.1, load=1.0, rtol=0.0), "rtol"),
-    (dict(speed=0.1, load=1.0, rtol=-1e-8), "rtol"),
-    (dict(speed=0.1, load=1.0, rtol=1.0), "rtol"),
-    (dict(speed=0.1, load=1.0, rtol=NAN), "rtol"),
-    (dict(speed=0.1, load=1.0, initial=np.ones(63)), "initial"),
-    (dict(speed=0.1, load=1.0, initial=np.ones((64, 64))), "initial"),
-    (dict(speed=0.1, load=1.0, periodic="no"), "periodic"),  # False is valid: isolated contact
-    (dict(speed=0.1, load=1.0, method="lemke"), "method"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(speed=0.1, load=0.0), "load"),
+        (dict(speed=0.1, load=-1.0), "load"),
+        (dict(speed=0.1, load=NAN), "load"),
+        (dict(speed=0.1, load=np.inf), "load"),
+        (dict(speed=0.1), "load"),  # neither load nor approach
+        (dict(speed=0.1, load=1.0, approach=1e-7), "load"),  # both
+        (dict(speed=0.1, approach=-1e-7), "approach"),
+        (dict(speed=0.1, approach=NAN), "approach"),
+        (dict(speed=-0.1, load=1.0), "speed"),
+        (dict(speed=NAN, load=1.0), "speed"),
+        (dict(speed=np.inf, load=1.0), "speed"),
+        (dict(speed="fast", load=1.0), "speed"),
+        (dict(speed=0.1, load=1.0, rtol=0.0), "rtol"),
+        (dict(speed=0.1, load=1.0, rtol=-1e-8), "rtol"),
+        (dict(speed=0.1, load=1.0, rtol=1.0), "rtol"),
+        (dict(speed=0.1, load=1.0, rtol=NAN), "rtol"),
+        (dict(speed=0.1, load=1.0, initial=np.ones(63)), "initial"),
+        (dict(speed=0.1, load=1.0, initial=np.ones((64, 64))), "initial"),
+        (dict(speed=0.1, load=1.0, periodic="no"), "periodic"),  # False is valid: isolated contact
+        (dict(speed=0.1, load=1.0, method="lemke"), "method"),
+    ],
+)
 def test_solve_rejects(kwargs, name):
     with pytest.raises(InputError, match=name):
         bem.solve(SURFACE, MAT, **kwargs)
 
 
-@pytest.mark.parametrize("surface, material, name", [
-    (np.zeros(64), MAT, "surface"),
-    ("rough.npy", MAT, "surface"),
-    (SURFACE, "rubber", "material"),
-    (SURFACE, None, "material"),
-])
+@pytest.mark.parametrize(
+    "surface, material, name",
+    [
+        (np.zeros(64), MAT, "surface"),
+        ("rough.npy", MAT, "surface"),
+        (SURFACE, "rubber", "material"),
+        (SURFACE, None, "material"),
+    ],
+)
 def test_solve_rejects_wrong_types(surface, material, name):
     with pytest.raises(InputError, match=name):
         bem.solve(surface, material, speed=0.1, load=1.0)
@@ -151,14 +163,17 @@ def test_solve_rejects_approach_at_or_beyond_full_contact(factor):
 
 
 # ------------------------------------------------------------ issue 7: heights, files, scenes, CLI
-@pytest.mark.parametrize("heights, words", [
-    ([0.0, NAN, 1e-6, 0.0], ["heights", "finite"]),
-    ([0.0, np.inf, 1e-6, 0.0], ["heights", "finite"]),
-    (np.zeros((4, 5)), ["heights", "square"]),
-    (np.zeros((4, 4, 4)), ["heights", "dimension"]),
-    (np.zeros(1), ["heights", "at least 2"]),
-    ([["a", "b"], ["c", "d"]], ["heights", "real numbers"]),
-])
+@pytest.mark.parametrize(
+    "heights, words",
+    [
+        ([0.0, NAN, 1e-6, 0.0], ["heights", "finite"]),
+        ([0.0, np.inf, 1e-6, 0.0], ["heights", "finite"]),
+        (np.zeros((4, 5)), ["heights", "square"]),
+        (np.zeros((4, 4, 4)), ["heights", "dimension"]),
+        (np.zeros(1), ["heights", "at least 2"]),
+        ([["a", "b"], ["c", "d"]], ["heights", "real numbers"]),
+    ],
+)
 def test_from_heights_rejects(heights, words):
     with pytest.raises(InputError) as err:
         surfaces.from_heights(heights, 1e-3)
@@ -172,16 +187,19 @@ def test_from_heights_rejects_length(length):
         surfaces.from_heights(np.zeros(8), length)
 
 
-@pytest.mark.parametrize("name, content, words", [
-    ("missing.npy", None, ["could not be read"]),
-    ("folder.txt", "DIR", ["could not be read"]),
-    ("garbage.txt", "1 2 x\n3 4 5\n", ["could not be read"]),
-    ("empty.csv", "", ["could not be read", "empty"]),
-    ("ragged.csv", "1,2,3\n4,5\n", ["could not be read"]),
-    ("nan.txt", "0 1\nnan 0\n", ["finite"]),
-    ("rect.txt", "0 1 2\n3 4 5\n", ["square"]),
-    ("heights.dat", "0 1\n", [".npy, .txt or .csv"]),
-])
+@pytest.mark.parametrize(
+    "name, content, words",
+    [
+        ("missing.npy", None, ["could not be read"]),
+        ("folder.txt", "DIR", ["could not be read"]),
+        ("garbage.txt", "1 2 x\n3 4 5\n", ["could not be read"]),
+        ("empty.csv", "", ["could not be read", "empty"]),
+        ("ragged.csv", "1,2,3\n4,5\n", ["could not be read"]),
+        ("nan.txt", "0 1\nnan 0\n", ["finite"]),
+        ("rect.txt", "0 1 2\n3 4 5\n", ["square"]),
+        ("heights.dat", "0 1\n", [".npy, .txt or .csv"]),
+    ],
+)
 def test_surface_file_rejects(tmp_path, name, content, words):
     path = tmp_path / name
     if content == "DIR":
@@ -223,10 +241,11 @@ SCENE_CASES = [
     (("creep_time = 0.01", "creep_time = 0.0"), ["creep_time", "> 0"]),
     (("creep_time = 0.01", "creep_time = 0.01\nnu = 0.6"), ["nu", "[0.0, 0.5]"]),
     (("creep_time = 0.01", "creep_time = 0.01\nnu = -0.1"), ["nu", "[0.0, 0.5]"]),
-    (("E0 = 3.3e6\nE_inf = 1.0e7\ncreep_time = 0.01", "E0 = 1e6\nmoduli = [1e6, 1e6]\ntimes = [1.0]"),
-     ["moduli and times", "same length"]),
-    (("E0 = 3.3e6\nE_inf = 1.0e7\ncreep_time = 0.01", "E0 = 1e6\nmoduli = [1e6]\ntimes = [-1.0]"),
-     ["times", "> 0"]),
+    (
+        ("E0 = 3.3e6\nE_inf = 1.0e7\ncreep_time = 0.01", "E0 = 1e6\nmoduli = [1e6, 1e6]\ntimes = [1.0]"),
+        ["moduli and times", "same length"],
+    ),
+    (("E0 = 3.3e6\nE_inf = 1.0e7\ncreep_time = 0.01", "E0 = 1e6\nmoduli = [1e6]\ntimes = [-1.0]"), ["times", "> 0"]),
     (("E0 = 3.3e6\nE_inf = 1.0e7\ncreep_time = 0.01", "E = -1e6"), ["E ", "> 0"]),
     (("load = 0.01", "load = 0.0"), ["load", "> 0"]),
     (("load = 0.01", "load = -0.01"), ["load", "> 0"]),

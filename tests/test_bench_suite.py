@@ -1,4 +1,5 @@
 """The benchmark suite's own logic (no solves): Pareto front, exponent fit, outputs only in --out."""
+
 from pathlib import Path
 
 import numpy as np
@@ -8,8 +9,14 @@ from viscobem_bench import cases, report, scaling, suite
 
 
 def test_pareto_front_keeps_only_undominated_points():
-    pts = [{"time": 1.0, "error": 1e-2}, {"time": 2.0, "error": 1e-3}, {"time": 3.0, "error": 5e-3},
-           {"time": 0.5, "error": 5e-2}, {"time": 4.0, "error": None}, {"time": 5.0, "error": 1e-4}]
+    pts = [
+        {"time": 1.0, "error": 1e-2},
+        {"time": 2.0, "error": 1e-3},
+        {"time": 3.0, "error": 5e-3},
+        {"time": 0.5, "error": 5e-2},
+        {"time": 4.0, "error": None},
+        {"time": 5.0, "error": 1e-4},
+    ]
     assert report.pareto_front(pts) == [3, 0, 1, 5]  # sorted by time; 2 is dominated by 1
 
 
@@ -30,8 +37,9 @@ def test_suite_writes_only_in_its_output_folder(tmp_path, monkeypatch):
     cwd = tmp_path / "cwd"
     cwd.mkdir()
     monkeypatch.chdir(cwd)
-    result = suite.run(quick=True, out_dir=tmp_path / "out", solvers=["none"], scaling=False, skip=False,
-                       echo=lambda *a: None)
+    result = suite.run(
+        quick=True, out_dir=tmp_path / "out", solvers=["none"], scaling=False, skip=False, echo=lambda *a: None
+    )
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["bench.json", "bench.md"]
     assert result["files"] == ["bench.json", "bench.md"] and not any(cwd.iterdir())
     assert (readme.read_bytes() if readme.is_file() else None) == before

@@ -1,4 +1,5 @@
 """The command line and scenes: a small study end to end, and scene validation."""
+
 import json
 import subprocess
 import sys
@@ -76,18 +77,24 @@ def test_unrequested_outputs_are_not_written(tmp_path):
     assert set(rec["stages"]) == {"fold", "friction_curve", "point_solve", "total"}
 
 
-@pytest.mark.parametrize("bad, words", [
-    (SMALL.replace("hurst = 0.8", "hurts = 0.8"), ["'hurts'", "valid keys", "hurst"]),
-    (SMALL.replace("[outputs]", "[outputz]"), ["'outputz'", "valid keys"]),
-    (SMALL.replace("load = 0.3", "load = -0.3"), ["load"]),
-    (SMALL.replace("E_inf = 1.0e7", "E_inf = 1.0e6"), ["E_inf"]),
-    (SMALL.replace('kind = "self_affine"', 'kind = "fractal"'), ["kind", "self_affine"]),
-])
+@pytest.mark.parametrize(
+    "bad, words",
+    [
+        (SMALL.replace("hurst = 0.8", "hurts = 0.8"), ["'hurts'", "valid keys", "hurst"]),
+        (SMALL.replace("[outputs]", "[outputz]"), ["'outputz'", "valid keys"]),
+        (SMALL.replace("load = 0.3", "load = -0.3"), ["load"]),
+        (SMALL.replace("E_inf = 1.0e7", "E_inf = 1.0e6"), ["E_inf"]),
+        (SMALL.replace('kind = "self_affine"', 'kind = "fractal"'), ["kind", "self_affine"]),
+    ],
+)
 def test_bad_scene_names_the_problem_without_traceback(tmp_path, bad, words):
     path = tmp_path / "bad.toml"
     path.write_text(bad)
-    proc = subprocess.run([sys.executable, "-m", "viscobem_cli.main", "run", str(path), "--out",
-                           str(tmp_path / "o")], capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "viscobem_cli.main", "run", str(path), "--out", str(tmp_path / "o")],
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
     for w in words:
@@ -102,8 +109,9 @@ def test_missing_scene_file_is_a_clear_error(tmp_path, capsys):
 # ----------------------------------------------------------------------------- a CLI that guides
 def _cli(*args, env=None, **kw):
     """``viscobem ARGS`` in a fresh interpreter: (exit status, stdout, stderr)."""
-    proc = subprocess.run([sys.executable, "-m", "viscobem_cli.main", *args], capture_output=True, text=True,
-                          env=env, **kw)
+    proc = subprocess.run(
+        [sys.executable, "-m", "viscobem_cli.main", *args], capture_output=True, text=True, env=env, **kw
+    )
     return proc.returncode, proc.stdout, proc.stderr
 
 
@@ -151,8 +159,15 @@ def test_template_runs_as_printed(tmp_path, capsys):
     # every optional line "# key = value" is a valid key with a valid example value
     lines = template.splitlines()
     body = next(i for i, line in enumerate(lines) if line and not line.startswith("#"))  # after the header
-    optional = [i for i, line in enumerate(lines) if i > body and line.startswith("# ") and line[2:3].isalpha()
-                and "=" in line.split("#")[1] and not line.startswith("# other forms")]
+    optional = [
+        i
+        for i, line in enumerate(lines)
+        if i > body
+        and line.startswith("# ")
+        and line[2:3].isalpha()
+        and "=" in line.split("#")[1]
+        and not line.startswith("# other forms")
+    ]
     assert len(optional) >= 10
     for i in optional:
         if "scheduler" not in lines[i]:
@@ -174,10 +189,11 @@ def test_missing_optional_dependency_names_the_extra(tmp_path):
     path = tmp_path / "s.toml"
     path.write_text(SMALL)
     block = "import sys; sys.modules['dask'] = sys.modules['distributed'] = sys.modules['pyvista'] = None; "
-    for args, extra in [(["run", str(path), "--out", str(tmp_path / "o")], "vtk"),
-                        (["run", str(path), "--out", str(tmp_path / "o"), "--scheduler", "tcp://127.0.0.1:1"],
-                         "dask"),
-                        (["validate", "--quick", "--case", "nothing", "--out", str(tmp_path / "v")], "vtk")]:
+    for args, extra in [
+        (["run", str(path), "--out", str(tmp_path / "o")], "vtk"),
+        (["run", str(path), "--out", str(tmp_path / "o"), "--scheduler", "tcp://127.0.0.1:1"], "dask"),
+        (["validate", "--quick", "--case", "nothing", "--out", str(tmp_path / "v")], "vtk"),
+    ]:
         code = f"{block}from viscobem_cli.main import main; sys.exit(main({args!r}))"
         proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
         assert proc.returncode == 2, proc.stderr
@@ -204,8 +220,11 @@ def test_under_resolved_grid_warns_with_what_to_change(tmp_path, capsys):
     """n / scales = 2 points per shortest wavelength: the resolution warning at once, and the
     two friction forms disagree (> 5 %) after the run; both in results.json["warnings"]."""
     path = tmp_path / "coarse.toml"
-    path.write_text(SMALL.replace("n = 64", "n = 32").replace("vtk = true", "plots = false\nfields = false")
-                    .replace("start = 1e-3, stop = 1e-1", "start = 1e-2, stop = 1e-1"))
+    path.write_text(
+        SMALL.replace("n = 64", "n = 32")
+        .replace("vtk = true", "plots = false\nfields = false")
+        .replace("start = 1e-3, stop = 1e-1", "start = 1e-2, stop = 1e-1")
+    )
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
     out = capsys.readouterr().out
     warnings = json.loads((tmp_path / "o" / "results.json").read_text())["warnings"]
@@ -306,8 +325,11 @@ def test_a_sweep_that_misses_the_friction_peak_says_so(tmp_path):
     from viscobem_cli.guidance import peak_warnings
 
     path = tmp_path / "s.toml"
-    path.write_text(SMALL.replace("start = 1e-3, stop = 1e-1", "start = 1e-4, stop = 1e-3")
-                    .replace("vtk = true", "plots = false\nfields = false"))
+    path.write_text(
+        SMALL.replace("start = 1e-3, stop = 1e-1", "start = 1e-4, stop = 1e-3").replace(
+            "vtk = true", "plots = false\nfields = false"
+        )
+    )
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
     warnings = json.loads((tmp_path / "o" / "results.json").read_text())["warnings"]
     assert any("largest at the highest speed" in w and "xi.stop" in w for w in warnings), warnings

@@ -1,4 +1,5 @@
 """Scenes with a sliding direction: ``[loading] direction_deg`` (one angle, or a sweep)."""
+
 import json
 
 import numpy as np
@@ -68,7 +69,7 @@ def test_single_direction_applies_to_every_point(tmp_path):
     assert rec["friction_curve"]["friction"][0] == pytest.approx(ref.friction, rel=1e-12)
 
 
-@pytest.mark.parametrize("dirs, words", [("\"east\"", "direction_deg"), ("[0, 0]", "repeat"), ("[]", "non-empty")])
+@pytest.mark.parametrize("dirs, words", [('"east"', "direction_deg"), ("[0, 0]", "repeat"), ("[]", "non-empty")])
 def test_bad_directions_are_named(tmp_path, dirs, words):
     with pytest.raises(bem.errors.InputError, match=words):
         scenes.load(_write(tmp_path, dirs))

@@ -1,6 +1,7 @@
 """Scene kind ``measured``: an instrument file (written here by SurfaceTopography) solved on
 the measured patch (isolated) or as a windowed periodic cell; the choice and the PSD report
 in results.json."""
+
 import json
 
 import numpy as np
@@ -79,11 +80,14 @@ def test_periodic_with_a_window(folder):
     assert rec["solver"]["periodic"] is True and rec["all_converged"]
 
 
-@pytest.mark.parametrize("extra, words", [
-    ('boundary = "isolated"\n[solver]\nperiodic = true', "contradicts"),
-    ('boundary = "periodic"\nwindow = "blackman"', "window must be one of"),
-    ('boundary = "isolated"\nradius = 0.1', "do not apply"),
-])
+@pytest.mark.parametrize(
+    "extra, words",
+    [
+        ('boundary = "isolated"\n[solver]\nperiodic = true', "contradicts"),
+        ('boundary = "periodic"\nwindow = "blackman"', "window must be one of"),
+        ('boundary = "isolated"\nradius = 0.1', "do not apply"),
+    ],
+)
 def test_bad_measured_scenes(folder, extra, words):
     with pytest.raises(bem.errors.InputError, match=words):
         scenes.load(_scene(folder, extra, "0.01"))

@@ -1,5 +1,6 @@
 """Nested iteration: the contact solver starts large periodic grids from the solution on the
 grid with half the points per axis (bem.contact.solve_contact)."""
+
 import numpy as np
 import pytest
 
@@ -37,8 +38,9 @@ def test_no_coarse_start_on_odd_or_small_grids():
     assert coarse_start(small, np.zeros(small.shape), never, min_size) == (None, 0.0, None)
 
 
-@pytest.mark.parametrize("material", [
-    bem.Material.elastic(1e7), bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)])
+@pytest.mark.parametrize(
+    "material", [bem.Material.elastic(1e7), bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)]
+)
 def test_coarse_start_changes_nothing_but_the_cost(material):
     """512² at ~10-20 % contact, converged to rtol 1e-10 with and without the coarse start:
     the same pressure (to ~1e-8, the tolerance) and fewer products with it (elastic on the
@@ -47,8 +49,9 @@ def test_coarse_start_changes_nothing_but_the_cost(material):
     s = bem.surfaces.self_affine(512, 0.01, hurst=0.8, scales=64, rms_height=2e-5, seed=3)
     out = {}
     for flag in (False, True):
-        out[flag] = bem.solve(s, material, speed=0.01, load=3.0, rtol=1e-10,
-                              contact_options=ContactOptions(coarsen=flag))
+        out[flag] = bem.solve(
+            s, material, speed=0.01, load=3.0, rtol=1e-10, contact_options=ContactOptions(coarsen=flag)
+        )
     plain, nested = out[False], out[True]
     assert 0.05 < nested.contact_fraction < 0.3
     err = np.linalg.norm(nested.pressure - plain.pressure) / np.linalg.norm(plain.pressure)

@@ -1,4 +1,5 @@
 """The contact solver's options object and public signature (bem.contact)."""
+
 import dataclasses
 import inspect
 import math
@@ -21,8 +22,7 @@ def _kind(field):
     return type(value) if type(value) in BAD else None
 
 
-@pytest.mark.parametrize("field", [f for f in dataclasses.fields(ContactOptions) if _kind(f)],
-                         ids=lambda f: f.name)
+@pytest.mark.parametrize("field", [f for f in dataclasses.fields(ContactOptions) if _kind(f)], ids=lambda f: f.name)
 def test_every_field_is_validated_and_named(field):
     for bad in BAD[_kind(field)]:
         with pytest.raises(InputError, match=rf"options\.{field.name}\b"):

@@ -1,5 +1,6 @@
 """Sliding in any direction (bem.direction): rotation checks, periodicity in the angle,
 reversal, and an exact oblique case (a diagonal sinusoid is a 1-D profile in disguise)."""
+
 import dataclasses
 
 import numpy as np
@@ -32,7 +33,9 @@ def test_periodic_plus_y_is_the_turned_surface_along_plus_x(rough):
     # the same arithmetic on permuted arrays: round-off
     assert along_y.friction == pytest.approx(along_x.friction, rel=1e-12)
     assert along_y.contact_fraction == along_x.contact_fraction
-    np.testing.assert_allclose(along_y.pressure, np.rot90(along_x.pressure, 1), rtol=0, atol=1e-9 * along_x.pressure.max())
+    np.testing.assert_allclose(
+        along_y.pressure, np.rot90(along_x.pressure, 1), rtol=0, atol=1e-9 * along_x.pressure.max()
+    )
     # the surface is anisotropic: the two directions differ (else the check is empty)
     assert abs(along_y.friction / bem.solve(rough, MAT, speed=SPEED, load=load).friction - 1) > 0.05
 
@@ -47,7 +50,8 @@ def test_periodic_oblique_operator_at_90_degrees_matches_the_turn(rough):
     u_turn = np.rot90(opx.displacement(np.rot90(p, -1)), 1)
     np.testing.assert_allclose(op.displacement(p), u_turn, rtol=0, atol=1e-13 * np.abs(u_turn).max())
     assert op.dissipation_integral(bem.fft.forward(p)) == pytest.approx(
-        opx.dissipation_integral(bem.fft.forward(np.rot90(p, -1))), rel=1e-12)
+        opx.dissipation_integral(bem.fft.forward(np.rot90(p, -1))), rel=1e-12
+    )
     load = 0.05 * 1e6 * L * L
     sol = bem.contact.solve_contact(op, rough.heights, mean_pressure=load / op.area, rtol=1e-8)
     ref = bem.solve(rough, MAT, speed=SPEED, load=load, direction=np.pi / 2)
@@ -96,15 +100,13 @@ def test_diagonal_sinusoid_is_the_profile_along_its_wavevector(frac):
     lam = L / np.sqrt(2)
     p_star = np.pi * 1e6 / 0.75 * g / lam
     r1 = bem.solve(surfaces.from_heights(h1, lam), MAT, speed=SPEED, load=frac * p_star * lam)
-    r2 = bem.solve(surfaces.from_heights(h2, L), MAT, speed=SPEED, load=frac * p_star * L * L,
-                   direction=np.pi / 4)
+    r2 = bem.solve(surfaces.from_heights(h2, L), MAT, speed=SPEED, load=frac * p_star * L * L, direction=np.pi / 4)
     assert r2.friction == pytest.approx(r1.friction, rel=1e-6)  # two solves to rtol 1e-8
     assert r2.friction_eq6 == pytest.approx(r1.friction_eq6, rel=1e-6)
     idx = (np.arange(n)[:, None] + np.arange(n)[None, :]) % n
     np.testing.assert_allclose(r2.pressure, r1.pressure[idx], rtol=0, atol=1e-6 * r1.pressure.max())
     # across the ridges nothing dissipates; backward the same friction (the profile is even)
-    across = bem.solve(surfaces.from_heights(h2, L), MAT, speed=SPEED, load=frac * p_star * L * L,
-                       direction=-np.pi / 4)
+    across = bem.solve(surfaces.from_heights(h2, L), MAT, speed=SPEED, load=frac * p_star * L * L, direction=-np.pi / 4)
     assert abs(across.friction) < 1e-10 * r1.friction
     assert r1.friction > 1e-3
 
@@ -120,8 +122,9 @@ def test_isolated_plus_y_is_the_turned_indenter_along_plus_x():
     along_x = bem.solve(_turned(s, -1), MAT, speed=speed, load=load, periodic=False)
     assert along_y.friction == pytest.approx(along_x.friction, rel=1e-12)
     assert along_y.contact_fraction == along_x.contact_fraction
-    np.testing.assert_allclose(along_y.pressure, np.rot90(along_x.pressure, 1), rtol=0,
-                               atol=1e-9 * along_x.pressure.max())
+    np.testing.assert_allclose(
+        along_y.pressure, np.rot90(along_x.pressure, 1), rtol=0, atol=1e-9 * along_x.pressure.max()
+    )
     plain = bem.solve(s, MAT, speed=speed, load=load, periodic=False)
     assert abs(along_y.friction / plain.friction - 1) > 0.02
     # reversal of an even body: the same friction, mirrored fields
@@ -139,11 +142,9 @@ def test_profile_reversed():
     np.testing.assert_allclose(back.pressure, mirror.pressure[::-1], rtol=0, atol=1e-9 * back.pressure.max())
 
 
-@pytest.mark.parametrize("bad, kwargs, words", [
-    (0.5, {}, "0 or pi"),
-    (float("nan"), {}, "finite"),
-    ("east", {}, "radians"),
-])
+@pytest.mark.parametrize(
+    "bad, kwargs, words", [(0.5, {}, "0 or pi"), (float("nan"), {}, "finite"), ("east", {}, "radians")]
+)
 def test_bad_directions_for_profiles(bad, kwargs, words):
     prof = surfaces.profile(32, L, hurst=0.8, scales=8, rms_slope=0.2, seed=2)
     with pytest.raises(InputError, match="direction") as err:
@@ -160,8 +161,7 @@ def test_oblique_adaptive_is_refused():
 def _ellipsoid():
     n, length = 32, 4e-3
     c = (np.arange(n) - (n - 1) / 2) * length / n
-    return surfaces.from_heights(-(c[:, None] ** 2 / (2 * 0.02) + c[None, :] ** 2 / (2 * 0.01)), length,
-                                 centered=True)
+    return surfaces.from_heights(-(c[:, None] ** 2 / (2 * 0.02) + c[None, :] ** 2 / (2 * 0.01)), length, centered=True)
 
 
 def test_isolated_oblique_kernels_against_the_x_quadrature():
@@ -176,8 +176,8 @@ def test_isolated_oblique_kernels_against_the_x_quadrature():
         along_y, _ = oblique_kernels(n, 1.0, np.pi / 2, [shift], [1.0])
         scale = np.abs(ref).max()
         # measured at most 2.3e-11 (x) relative; 1e-9 leaves margin for other shifts
-        assert np.abs(along_x[:, n - 1:] - ref).max() < 1e-9 * scale, shift
-        assert np.abs(along_y[n - 1:, :].T - ref).max() < 1e-9 * scale, shift
+        assert np.abs(along_x[:, n - 1 :] - ref).max() < 1e-9 * scale, shift
+        assert np.abs(along_y[n - 1 :, :].T - ref).max() < 1e-9 * scale, shift
 
 
 @pytest.mark.parametrize("theta", [0.4, np.pi / 4])
@@ -225,8 +225,7 @@ def test_isolated_oblique_periodic_in_2pi_reversal_and_isotropy():
     # a sphere: the same friction in every direction up to the square grid's anisotropy
     # (measured 0.45 % at 45 degrees on 32 elements)
     sphere = surfaces.sphere(radius=0.01, n=32, length=2e-3)
-    mu = [bem.solve(sphere, MAT, speed=0.01, load=0.05, periodic=False, direction=t).friction
-          for t in (0.0, np.pi / 4)]
+    mu = [bem.solve(sphere, MAT, speed=0.01, load=0.05, periodic=False, direction=t).friction for t in (0.0, np.pi / 4)]
     assert mu[1] == pytest.approx(mu[0], rel=0.01)
 
 
@@ -247,8 +246,9 @@ def test_anisotropy_is_reported_from_the_sliding_direction(rough):
     # measured from +x instead, the moments differ (the check has teeth)
     from_x = anisotropy.spectral_moments(along_y.displacement, L)
     assert np.cos(2 * (from_x.theta_max - mx.theta_max)) < 0.5 and from_x.m11 * mx.m11 < 0
-    ey = anisotropy.psd_contour(anisotropy.contact_psd(along_y.pressure > 0, L, smoothing=2.0), 0.7,
-                                direction=np.pi / 2)
+    ey = anisotropy.psd_contour(
+        anisotropy.contact_psd(along_y.pressure > 0, L, smoothing=2.0), 0.7, direction=np.pi / 2
+    )
     ex = anisotropy.psd_contour(anisotropy.contact_psd(along_x.pressure > 0, L, smoothing=2.0), 0.7)
     # the contour's rays (multiples of pi / 180) map onto each other under a quarter turn
     assert ey.stretch_x == pytest.approx(ex.stretch_x, rel=1e-9)
@@ -263,8 +263,9 @@ def test_friction_curve_along_a_direction():
     curve = bem.friction_curve(s, MAT, speeds=[0.003, 0.03], load=0.05, direction=0.5, warm_start=False)
     for v, mu in zip((0.003, 0.03), curve.friction):
         assert mu == pytest.approx(bem.solve(s, MAT, speed=v, load=0.05, direction=0.5).friction, rel=1e-12)
-    assert curve.friction[0] != pytest.approx(bem.friction_curve(s, MAT, speeds=[0.003], load=0.05).friction[0],
-                                              rel=1e-3)
+    assert curve.friction[0] != pytest.approx(
+        bem.friction_curve(s, MAT, speeds=[0.003], load=0.05).friction[0], rel=1e-3
+    )
 
 
 def test_adaptive_mesh_along_plus_y_is_the_turned_indenter():
@@ -273,5 +274,6 @@ def test_adaptive_mesh_along_plus_y_is_the_turned_indenter():
     along_y = bem.solve(s, MAT, direction=np.pi / 2, **kw)
     along_x = bem.solve(_turned(s, -1), MAT, **kw)
     assert along_y.friction == pytest.approx(along_x.friction, rel=1e-12)
-    np.testing.assert_allclose(along_y.pressure, np.rot90(along_x.pressure, 1), rtol=0,
-                               atol=1e-9 * along_x.pressure.max())
+    np.testing.assert_allclose(
+        along_y.pressure, np.rot90(along_x.pressure, 1), rtol=0, atol=1e-9 * along_x.pressure.max()
+    )

@@ -3,6 +3,7 @@
 Modules are found by their source (any ``>>>`` line) and imported by name, so the examples
 run against the same installed package as the other tests.
 """
+
 import doctest
 import importlib
 from pathlib import Path
@@ -31,7 +32,12 @@ def test_the_library_has_examples():
 @pytest.mark.parametrize("name", MODULES)
 def test_docstring_examples_run(name):
     module = importlib.import_module(name)
-    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE,
-                             raise_on_error=False, verbose=False, report=True)
+    result = doctest.testmod(
+        module,
+        optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE,
+        raise_on_error=False,
+        verbose=False,
+        report=True,
+    )
     assert result.attempted > 0, f"{name}: its examples were not collected"
     assert result.failed == 0, f"{name}: {result.failed} of {result.attempted} examples failed (see the output)"

@@ -1,4 +1,5 @@
 """Axisymmetric FEM (fem_reference.axisymmetric / indentation) against exact solutions."""
+
 import numpy as np
 import pytest
 
@@ -101,11 +102,18 @@ def test_lee_radok_creep():
     assert np.all(np.diff(r.contact_radius) >= -r.element_size / 8)  # creep: contact grows
 
 
-@pytest.mark.parametrize("kw, name", [
-    (dict(radius=0.0), "radius"), (dict(load=-1.0), "load"), (dict(times=[1.0, 0.5]), "times"),
-    (dict(times=[-1.0]), "times"), (dict(resolution=0), "resolution"), (dict(grading=3.0), "grading"),
-    (dict(steps_per_decade=0), "steps_per_decade"),
-])
+@pytest.mark.parametrize(
+    "kw, name",
+    [
+        (dict(radius=0.0), "radius"),
+        (dict(load=-1.0), "load"),
+        (dict(times=[1.0, 0.5]), "times"),
+        (dict(times=[-1.0]), "times"),
+        (dict(resolution=0), "resolution"),
+        (dict(grading=3.0), "grading"),
+        (dict(steps_per_decade=0), "steps_per_decade"),
+    ],
+)
 def test_bad_input(kw, name):
     args = dict(radius=R, load=P, times=[0.0]) | kw
     with pytest.raises(InputError, match=name):

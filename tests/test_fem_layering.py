@@ -1,4 +1,5 @@
-"""fem_reference shares only data types with bem (SPEC §4): never its kernels or solvers."""
+"""fem_reference shares only data types with bem (docs/theory.md §9): never its kernels or solvers."""
+
 import ast
 import pathlib
 

@@ -6,6 +6,7 @@ the core element size h (peak pressure 0.81 / 0.39 / 0.12 % and half-width 1.5 /
 0.31 % at 2 / 4 / 8 elements per half-width, nu = 0.3; see test_mesh_convergence) plus the
 truncation error ~0.3 (a/H)^2 < 0.02 % of the default block.
 """
+
 import numpy as np
 import pytest
 
@@ -140,12 +141,20 @@ def test_mesh_convergence():
     assert 0.9 <= rate_p <= 2.1
 
 
-@pytest.mark.parametrize("kw, name", [
-    (dict(radius=-1.0), "radius"), (dict(load=0.0), "load"), (dict(speed=-1.0), "speed"),
-    (dict(resolution=0), "resolution"), (dict(grading=1.0), "grading"),
-    (dict(contact_band=1.0), "contact_band"), (dict(domain=1e-4), "domain"),
-    (dict(solver="mumps"), "solver"), (dict(maxiter=0), "maxiter"),
-])
+@pytest.mark.parametrize(
+    "kw, name",
+    [
+        (dict(radius=-1.0), "radius"),
+        (dict(load=0.0), "load"),
+        (dict(speed=-1.0), "speed"),
+        (dict(resolution=0), "resolution"),
+        (dict(grading=1.0), "grading"),
+        (dict(contact_band=1.0), "contact_band"),
+        (dict(domain=1e-4), "domain"),
+        (dict(solver="mumps"), "solver"),
+        (dict(maxiter=0), "maxiter"),
+    ],
+)
 def test_bad_input(kw, name):
     args = dict(radius=R, load=P, speed=1.0) | kw
     with pytest.raises(InputError, match=name):
@@ -160,13 +169,12 @@ def test_material_must_be_a_material():
 def test_active_set_limit_raises():
     m = sls(3.0)
     with pytest.raises(ConvergenceError):
-        rolling_cylinder(m, radius=R, load=P, speed=speed_for(m, 1.0), resolution=2, grading=1.5,
-                         maxiter=1)
+        rolling_cylinder(m, radius=R, load=P, speed=speed_for(m, 1.0), resolution=2, grading=1.5, maxiter=1)
 
 
 def test_inactive_prony_terms_are_folded():
     # A term 1e10 times faster than the contact time scale acts fully relaxed, one 1e8
-    # times slower fully glassy: they are folded (SPEC §5), leaving the SLS with
+    # times slower fully glassy: they are folded (docs/theory.md §11), leaving the SLS with
     # E0 = 2 MPa, E_1 = 2 MPa. Its friction from a separate run agrees to 2 % (each run is
     # within ~0.5 % of Hunter on its own mesh; the meshes differ because h follows the
     # original glassy half-width).

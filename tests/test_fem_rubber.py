@@ -1,6 +1,7 @@
 """FEM for real rubbers: graded mesh, folding, condensed viscous strains, multi-RHS
 contact, linear residual and computed success; and (slow) the FEM against the BEM.
 """
+
 import dataclasses
 
 import numpy as np
@@ -20,8 +21,7 @@ R, P = 0.01, 100.0
 
 
 def rubber(n, ratio, nu=0.5):
-    return Material.from_prony(E0=1e6, moduli=np.full(n, (ratio - 1) * 1e6 / n), times=np.logspace(-5, -1, n),
-                               nu=nu)
+    return Material.from_prony(E0=1e6, moduli=np.full(n, (ratio - 1) * 1e6 / n), times=np.logspace(-5, -1, n), nu=nu)
 
 
 def test_graded_coordinates_hit_foci_and_bound_growth():

@@ -6,6 +6,7 @@ Reference: the exact solution of ``-ell alpha' + alpha = eps`` on ``[-5, 5]`` wi
     alpha(x) = (sqrt(pi) / 2 ell) [erfcx(c) e^{-x^2} - erfcx(b) e^{-25 - (5 - x)/ell}]
                + e^{-(5 - x)/ell} eps(5),      c = x + 1/(2 ell), b = 5 + 1/(2 ell).
 """
+
 import numpy as np
 import pytest
 from scipy.special import erfcx
@@ -16,13 +17,13 @@ from fem_reference.transport import exponential_weights, integrate_line, streaml
 def exact_gaussian(x, ell):
     c = x + 0.5 / ell
     b = 5.0 + 0.5 / ell
-    conv = np.sqrt(np.pi) / (2 * ell) * (erfcx(c) * np.exp(-x**2) - erfcx(b) * np.exp(-25.0 - (5.0 - x) / ell))
+    conv = np.sqrt(np.pi) / (2 * ell) * (erfcx(c) * np.exp(-(x**2)) - erfcx(b) * np.exp(-25.0 - (5.0 - x) / ell))
     return conv + np.exp(-(5.0 - x) / ell) * np.exp(-25.0)
 
 
 def max_error(n, ell):
     x = np.linspace(5.0, -5.0, n + 1)  # upstream first
-    return np.max(np.abs(integrate_line(x, np.exp(-x**2), ell) - exact_gaussian(x, ell)))
+    return np.max(np.abs(integrate_line(x, np.exp(-(x**2)), ell) - exact_gaussian(x, ell)))
 
 
 @pytest.mark.parametrize("ratio", np.logspace(-4, 4, 9))

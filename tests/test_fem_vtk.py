@@ -1,5 +1,6 @@
 """VTK export of the rolling fields: write a .vtm (block + interface), read it back with pyvista,
 and compare names, units and values with the result object."""
+
 import numpy as np
 import pytest
 
@@ -13,8 +14,9 @@ from fem_reference.vtk import COMPONENTS, UNITS, tau_name
 def rolled(tmp_path_factory):
     m = Material.from_prony(E0=1e6, moduli=[1e6, 1e6], times=[3e-3, 3e-2], nu=0.5)
     path = tmp_path_factory.mktemp("vtk") / "rolling.vtm"
-    r = rolling_cylinder(m, radius=0.01, load=100.0, speed=0.05, resolution=2, grading=1.5, vtk=path,
-                         keep_fields=True, fold=0)
+    r = rolling_cylinder(
+        m, radius=0.01, load=100.0, speed=0.05, resolution=2, grading=1.5, vtk=path, keep_fields=True, fold=0
+    )
     return r, path
 
 
@@ -41,8 +43,7 @@ def test_vtm_holds_the_block_and_the_interface_with_metadata(rolled):
     gap = iface.point_data["gap"]
     assert np.all(np.abs(gap[r.pressure > 0]) <= 1e-9 * abs(r.approach))
     assert np.all(gap[r.pressure == 0] >= -1e-9 * abs(r.approach))
-    np.testing.assert_allclose(-iface.point_data["displacement"][:, 1], r.displacement,
-                               atol=1e-8 * abs(r.approach))
+    np.testing.assert_allclose(-iface.point_data["displacement"][:, 1], r.displacement, atol=1e-8 * abs(r.approach))
 
 
 def test_tensors_are_full_and_named_and_internal_variables_carry_tau(rolled):
@@ -118,8 +119,7 @@ def test_indentation_pvd_time_series(tmp_path):
 
     m = Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01, nu=0.5)
     times = np.array([0.0, 0.01, 0.05])
-    r = indentation(m, radius=0.01, load=1.0, times=times, resolution=2, steps_per_decade=4,
-                    vtk=tmp_path / "creep.pvd")
+    r = indentation(m, radius=0.01, load=1.0, times=times, resolution=2, steps_per_decade=4, vtk=tmp_path / "creep.pvd")
     reader = pv.get_reader(tmp_path / "creep.pvd")
     np.testing.assert_allclose(reader.time_values, times)
     reader.set_active_time_point(len(times) - 1)

@@ -3,6 +3,7 @@
 Material of the seed paper (E_inf = 1e7 Pa, E_inf/E0 = 3, creep time 0.01 s) unless noted;
 cylinder R = 1 cm under 1 kN/m, so the relaxed Hertz half-width is a0 = 1.69 mm.
 """
+
 import numpy as np
 import pytest
 from scipy import integrate
@@ -43,9 +44,11 @@ def test_bruteforce_creep_kernel_matches_quadrature():
     # constant shift*ln(shift) is dropped by _phi_creep and irrelevant (rigid approach)
     shift = 1.3
     for t in [-3.0, -0.5, 0.0, 0.7, 4.0]:
-        def f(z):
+
+        def f(z, t=t):
             y = t + shift * z
             return np.exp(-z) * (y * np.log(abs(y)) - y if y != 0 else 0.0)
+
         ref = integrate.quad(f, 0, 60, points=[-t / shift] if t < 0 else None, epsabs=1e-13, limit=200)[0]
         got = _phi_creep(np.array([t]), shift)[0] + shift * np.log(shift)
         assert got == pytest.approx(ref, abs=1e-11)
@@ -56,17 +59,22 @@ def _bruteforce(sol, material, n_contact, nu=0.5):
     is smooth in the cell size instead of jittering with the sub-cell edge position)."""
     dx = (sol.leading_edge - sol.trailing_edge) / n_contact
     k = n_contact // 5
-    x, p, _ = solve_line_contact(material, radius=R, load=P, speed=sol.speed,
-                                 x_min=sol.trailing_edge - k * dx, x_max=sol.leading_edge + k * dx,
-                                 n=n_contact + 2 * k)
+    x, p, _ = solve_line_contact(
+        material,
+        radius=R,
+        load=P,
+        speed=sol.speed,
+        x_min=sol.trailing_edge - k * dx,
+        x_max=sol.leading_edge + k * dx,
+        n=n_contact + 2 * k,
+    )
     return x, p, dx, np.sum(p * x) * dx / (R * P)
 
 
 # (V lam / a0, cells in contact, tolerance on mu): the brute-force error falls like
 # dx^2.9 at every speed but is larger at low speed, where cells must resolve the
 # leading-edge layer of width V tau; measured 2.1e-5, 3.2e-7, 4.0e-8, 8.4e-8
-@pytest.mark.parametrize("xi, n, tol", [(0.03, 400, 6e-5), (0.3, 400, 1e-6), (1.0, 400, 1.2e-7),
-                                        (10.0, 200, 2.5e-7)])
+@pytest.mark.parametrize("xi, n, tol", [(0.03, 400, 6e-5), (0.3, 400, 1e-6), (1.0, 400, 1.2e-7), (10.0, 200, 2.5e-7)])
 def test_agrees_with_bruteforce(xi, n, tol):
     sol = rolling_cylinder(SEED, radius=R, load=P, speed=_speed(xi))
     x, p, dx, mu = _bruteforce(sol, SEED, n)
@@ -126,8 +134,10 @@ def test_hertz_limits(nu):
 
 def test_speed_zero_and_elastic_give_hertz_exactly():
     hz = line_contact(SEED.E0, SEED.nu, R, P)
-    for sol in [rolling_cylinder(SEED, radius=R, load=P, speed=0.0),
-                rolling_cylinder(Material.elastic(SEED.E0), radius=R, load=P, speed=3.0)]:
+    for sol in [
+        rolling_cylinder(SEED, radius=R, load=P, speed=0.0),
+        rolling_cylinder(Material.elastic(SEED.E0), radius=R, load=P, speed=3.0),
+    ]:
         assert (sol.leading_edge, sol.trailing_edge, sol.friction) == (hz.a, -hz.a, 0.0)
         assert sol.peak_pressure == hz.p0
         assert sol.pressure([0.3 * hz.a]) == pytest.approx(hz.pressure([0.3 * hz.a]), rel=1e-15)
@@ -136,8 +146,12 @@ def test_speed_zero_and_elastic_give_hertz_exactly():
 def test_low_speed_friction_asymptote():
     # mu R / (V lam (1 - E0/E_inf)) = 1 + k xi + ..., xi = V lam / a0, lam the CREEP time
     xi = np.array([1e-6, 1e-5, 1e-4])
-    ratio = [rolling_cylinder(SEED, radius=R, load=P, speed=_speed(x)).friction * R
-             / (_speed(x) * LAM * (1 - SEED.E0 / SEED.E_inf)) for x in xi]
+    ratio = [
+        rolling_cylinder(SEED, radius=R, load=P, speed=_speed(x)).friction
+        * R
+        / (_speed(x) * LAM * (1 - SEED.E0 / SEED.E_inf))
+        for x in xi
+    ]
     k, one = np.polyfit(xi, ratio, 1)
     assert one == pytest.approx(1.0, abs=1e-9)  # measured |one - 1| ~ 1e-12
     assert k == pytest.approx(-2 / 3, rel=1e-3)  # measured -0.666667 = -(1 + E0/E_inf) / 2
@@ -221,9 +235,11 @@ def test_bad_input():
         rolling_cylinder(multi, radius=R, load=P, speed=1.0)
     with pytest.raises(InputError, match="material"):
         rolling_cylinder("rubber", radius=R, load=P, speed=1.0)
-    for name, kwargs in [("radius", dict(radius=0.0, load=P, speed=1.0)),
-                         ("load", dict(radius=R, load=-1.0, speed=1.0)),
-                         ("speed", dict(radius=R, load=P, speed=-1.0)),
-                         ("speed", dict(radius=R, load=P, speed=np.nan))]:
+    for name, kwargs in [
+        ("radius", dict(radius=0.0, load=P, speed=1.0)),
+        ("load", dict(radius=R, load=-1.0, speed=1.0)),
+        ("speed", dict(radius=R, load=P, speed=-1.0)),
+        ("speed", dict(radius=R, load=P, speed=np.nan)),
+    ]:
         with pytest.raises(InputError, match=name):
             rolling_cylinder(SEED, **kwargs)

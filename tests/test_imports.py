@@ -7,6 +7,7 @@
 - every module parses as Python 3.10 (``requires-python``) and reads TOML through the
   ``tomli`` fallback where ``tomllib`` (3.11+) is missing.
 """
+
 import ast
 import sys
 from pathlib import Path
@@ -24,8 +25,11 @@ def _module_name(path, root):
 
 def _sources(root=ROOT):
     """``{module name: (path, syntax tree)}`` of the library packages under ``root``."""
-    return {_module_name(path, root): (path, ast.parse(path.read_text(), filename=str(path)))
-            for top in PACKAGES for path in sorted((root / top).rglob("*.py"))}
+    return {
+        _module_name(path, root): (path, ast.parse(path.read_text(), filename=str(path)))
+        for top in PACKAGES
+        for path in sorted((root / top).rglob("*.py"))
+    }
 
 
 SOURCES = _sources()
@@ -104,7 +108,9 @@ def _cycles(edges):
 def _package_edges(edges):
     top = {}
     for m, targets in edges.items():
-        top.setdefault(m.split(".")[0], set()).update(t.split(".")[0] for t in targets if t.split(".")[0] != m.split(".")[0])
+        top.setdefault(m.split(".")[0], set()).update(
+            t.split(".")[0] for t in targets if t.split(".")[0] != m.split(".")[0]
+        )
     return top
 
 
@@ -124,8 +130,12 @@ def _private_uses(sources):
             if name is None:
                 modules[alias] = target
         for node in ast.walk(tree):
-            if (isinstance(node, ast.Attribute) and node.attr.startswith("_") and not node.attr.startswith("__")
-                    and isinstance(node.value, (ast.Name, ast.Attribute))):
+            if (
+                isinstance(node, ast.Attribute)
+                and node.attr.startswith("_")
+                and not node.attr.startswith("__")
+                and isinstance(node.value, (ast.Name, ast.Attribute))
+            ):
                 base = ast.unparse(node.value)
                 if base in modules or base.split(".")[0] in modules and base.split(".")[0] != base:
                     found.append(f"{m}:{node.lineno} {base}.{node.attr}")
@@ -154,13 +164,21 @@ def _write(root, files):
 def test_the_rules_catch_a_cycle_and_a_private_import(tmp_path):
     """The checks above on a small made-up tree: a deferred module cycle, a package cycle and
     two private names taken across packages are all reported."""
-    _write(tmp_path, {
-        "bem/__init__.py": "", "bem/a.py": "def f():\n    from .b import g\n", "bem/b.py": "from . import a\n",
-        "viscobem_cli/__init__.py": "", "viscobem_cli/main.py": "from viscobem_bench import suite\n",
-        "viscobem_bench/__init__.py": "",
-        "viscobem_bench/suite.py": "import bem.a\nfrom viscobem_cli.main import x\nbem.a._cache.clear()\n"
-                                   "from bem.b import _check\n",
-        "validation/__init__.py": "", "fem_reference/__init__.py": ""})
+    _write(
+        tmp_path,
+        {
+            "bem/__init__.py": "",
+            "bem/a.py": "def f():\n    from .b import g\n",
+            "bem/b.py": "from . import a\n",
+            "viscobem_cli/__init__.py": "",
+            "viscobem_cli/main.py": "from viscobem_bench import suite\n",
+            "viscobem_bench/__init__.py": "",
+            "viscobem_bench/suite.py": "import bem.a\nfrom viscobem_cli.main import x\nbem.a._cache.clear()\n"
+            "from bem.b import _check\n",
+            "validation/__init__.py": "",
+            "fem_reference/__init__.py": "",
+        },
+    )
     fake = _sources(tmp_path)
     edges = _graph(fake)
     assert _cycles(edges) == [["bem.a", "bem.b"], ["viscobem_bench.suite", "viscobem_cli.main"]]
@@ -180,8 +198,13 @@ def _python_3_10():
     import subprocess
 
     for exe in (shutil.which("python3.10"), *sorted(Path("/root/.pyenv/versions").glob("3.10*/bin/python3.10"))):
-        if exe and subprocess.run([str(exe), "-c", "import sys; assert sys.version_info[:2] == (3, 10)"],
-                                  capture_output=True).returncode == 0:
+        if (
+            exe
+            and subprocess.run(
+                [str(exe), "-c", "import sys; assert sys.version_info[:2] == (3, 10)"], capture_output=True
+            ).returncode
+            == 0
+        ):
             return str(exe)
     return None
 
@@ -209,22 +232,33 @@ def _tomllib_guarded(tree):
     guarded = set()
     for node in ast.walk(tree):
         if isinstance(node, ast.Try) and any(
-                isinstance(h.type, ast.Name) and h.type.id in ("ImportError", "ModuleNotFoundError")
-                and _imports_tomli(h.body) for h in node.handlers):
+            isinstance(h.type, ast.Name)
+            and h.type.id in ("ImportError", "ModuleNotFoundError")
+            and _imports_tomli(h.body)
+            for h in node.handlers
+        ):
             guarded.update(id(s) for s in node.body)
         if isinstance(node, ast.If) and "version_info" in ast.unparse(node.test):
             if _imports_tomli(node.orelse):
                 guarded.update(id(s) for s in node.body)
             if _imports_tomli(node.body):
                 guarded.update(id(s) for s in node.orelse)
-    return all(id(n) in guarded for n in ast.walk(tree)
-               if isinstance(n, ast.Import) and any(a.name == "tomllib" for a in n.names))
+    return all(
+        id(n) in guarded
+        for n in ast.walk(tree)
+        if isinstance(n, ast.Import) and any(a.name == "tomllib" for a in n.names)
+    )
 
 
-@pytest.mark.parametrize("path", sorted([*(p for p, _ in SOURCES.values()), *(ROOT / "tests").glob("*.py")]),
-                         ids=lambda p: str(p.relative_to(ROOT)))
+@pytest.mark.parametrize(
+    "path",
+    sorted([*(p for p, _ in SOURCES.values()), *(ROOT / "tests").glob("*.py")]),
+    ids=lambda p: str(p.relative_to(ROOT)),
+)
 def test_tomllib_has_the_tomli_fallback(path):
-    assert _tomllib_guarded(ast.parse(path.read_text())), "use: try: import tomllib / except ImportError: import tomli as tomllib"
+    assert _tomllib_guarded(ast.parse(path.read_text())), (
+        "use: try: import tomllib / except ImportError: import tomli as tomllib"
+    )
 
 
 def test_tomli_is_a_dependency_below_python_3_11():

@@ -1,9 +1,10 @@
-"""Isolated contacts (SPEC §3): kernels, operator properties, Hunter, Hertz, low-speed friction.
+"""Isolated contacts (docs/theory.md §8): kernels, operator properties, Hunter, Hertz, low-speed friction.
 
 References: Hunter's exact rolling cylinder (:mod:`validation.hunter`), Hertz
 (:mod:`validation.hertz`), brute-force quadrature (scipy.integrate.quad) of the kernels, and
 the independent dense strip kernel of :mod:`validation._bruteforce_line`.
 """
+
 import numpy as np
 import pytest
 from scipy import integrate
@@ -53,9 +54,16 @@ def test_love_formula_against_quadrature_in_all_quadrants():
         # split the square at the field point, so that 1/r is singular only at sub-rectangle corners
         xs = sorted({-w / 2, w / 2, *([x] if abs(x) < w / 2 else [])})
         ys = sorted({-w / 2, w / 2, *([y] if abs(y) < w / 2 else [])})
-        ref = sum(integrate.dblquad(lambda t, s, x=x, y=y: 1.0 / np.hypot(x - s, y - t), s0, s1, t0, t1,
-                                    epsabs=0, epsrel=1e-11)[0]
-                  for s0, s1 in zip(xs, xs[1:]) for t0, t1 in zip(ys, ys[1:])) / np.pi
+        ref = (
+            sum(
+                integrate.dblquad(
+                    lambda t, s, x=x, y=y: 1.0 / np.hypot(x - s, y - t), s0, s1, t0, t1, epsabs=0, epsrel=1e-11
+                )[0]
+                for s0, s1 in zip(xs, xs[1:])
+                for t0, t1 in zip(ys, ys[1:])
+            )
+            / np.pi
+        )
         # 1e-9: adaptive quadrature of the corner singularities reaches ~1e-11
         assert influence.square_elastic(x, y, w) == pytest.approx(ref, rel=1e-9)
 
@@ -91,13 +99,15 @@ def test_strip_creep_kernel_against_brute_force_quadrature(shift):
 @pytest.mark.parametrize("dim", [1, 2])
 def test_creep_kernels_reach_both_elastic_limits_without_cancellation(dim):
     """A creep term of shift L = v lambda tends to G (L -> 0) and to a constant (L -> inf). At
-    L = 1e13 d a kernel that cancels catastrophically (SPEC §7) would be off by ~eps L/d = 1e-3."""
+    L = 1e13 d a kernel that cancels catastrophically (docs/theory.md §12) would be off by ~eps L/d = 1e-3."""
     n, d = 16, 1.0
     m = np.arange(-(2 * n - 1), 2 * n)
     if dim == 1:
+
         def creep(shift):
             k = influence.strip_creep(m * d / 2, d, shift)
             return k - k[2 * n - 1]  # plane strain: only differences are defined
+
         el = influence.strip_elastic(m * d / 2, d, n * d)
         el = el - el[2 * n - 1]
     else:
@@ -113,7 +123,7 @@ def test_creep_kernels_reach_both_elastic_limits_without_cancellation(dim):
 
 
 def test_inactive_creep_terms_are_folded():
-    """Terms with v lambda < 1e-6 d act as relaxed, > 1e6 length as glassy (SPEC §5)."""
+    """Terms with v lambda < 1e-6 d act as relaxed, > 1e6 length as glassy (docs/theory.md §11)."""
     mat = bem.Material.from_creep(E0=1e6, compliances=[3e-7, 4e-7, 2e-7], times=[1e8, 1.0, 1e-7])
     n, length, v = 16, 1e-2, 1e-3  # v lambda: 1e5 m (glassy), 1e-3 m (active), 1e-10 m (relaxed)
     op = IsolatedHalfSpace((n, n), length, mat, v)

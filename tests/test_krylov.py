@@ -1,5 +1,6 @@
 """Krylov inner solvers: plain and preconditioned CG / GMRES against dense solves, and the
 contact solver's restricted-inverse preconditioner (same answer, fewer products)."""
+
 import numpy as np
 import pytest
 
@@ -24,8 +25,9 @@ def test_cg_solves_spd_system(use_m):
     rng = np.random.default_rng(0)
     a, m_inv = _spd(60, 1e4, rng, spread=0.3)
     b = rng.standard_normal(60)
-    x, res, k = krylov.cg(lambda v: a @ v, b, atol=1e-10 * np.linalg.norm(b), maxiter=500,
-                          M=(lambda r: m_inv @ r) if use_m else None)
+    x, res, k = krylov.cg(
+        lambda v: a @ v, b, atol=1e-10 * np.linalg.norm(b), maxiter=500, M=(lambda r: m_inv @ r) if use_m else None
+    )
     assert np.linalg.norm(b - a @ x) == pytest.approx(res, rel=1e-6, abs=1e-12)
     assert res <= 1e-10 * np.linalg.norm(b)
     np.testing.assert_allclose(x, np.linalg.solve(a, b), rtol=1e-6, atol=1e-8 * np.abs(x).max())
@@ -40,8 +42,14 @@ def test_gmres_right_preconditioning_reports_the_true_residual(use_m):
     a = _spd(n, 1e3, rng) + 0.5 * (lambda s: s - s.T)(rng.standard_normal((n, n)))  # positive real
     b = rng.standard_normal(n)
     m_inv = np.linalg.inv(a + 0.05 * rng.standard_normal((n, n)))
-    x, res, k = krylov.gmres(lambda v: a @ v, b, atol=1e-10 * np.linalg.norm(b), maxiter=2000,
-                             restart=20, M=(lambda r: m_inv @ r) if use_m else None)
+    x, res, k = krylov.gmres(
+        lambda v: a @ v,
+        b,
+        atol=1e-10 * np.linalg.norm(b),
+        maxiter=2000,
+        restart=20,
+        M=(lambda r: m_inv @ r) if use_m else None,
+    )
     true = np.linalg.norm(b - a @ x)
     assert res <= 1e-10 * np.linalg.norm(b)
     assert true <= 1e-9 * np.linalg.norm(b)  # Arnoldi residual = true residual up to round-off
@@ -84,10 +92,15 @@ def test_symmetric_warm_start_stops_cycling():
     assert res.matvecs < 2500
 
 
-@pytest.mark.parametrize("material", [
-    bem.Material.elastic(1e7),
-    pytest.param(bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01),
-                 marks=pytest.mark.slow)])
+@pytest.mark.parametrize(
+    "material",
+    [
+        bem.Material.elastic(1e7),
+        pytest.param(
+            bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01), marks=pytest.mark.slow
+        ),
+    ],
+)
 def test_preconditioned_contact_solve_agrees_and_saves_products(material):
     """At 10-20 % contact on 512² (above ``precondition_min_size``) the restricted inverse must
     not change the answer (both solves are converged to rtol 1e-10, so the pressures agree to
@@ -98,8 +111,9 @@ def test_preconditioned_contact_solve_agrees_and_saves_products(material):
     out = {}
     for flag in (False, True):
         bem.sliding.clear_operator_cache()
-        out[flag] = bem.solve(s, material, speed=speed, load=3.0, rtol=1e-10,
-                              contact_options=ContactOptions(precondition=flag))
+        out[flag] = bem.solve(
+            s, material, speed=speed, load=3.0, rtol=1e-10, contact_options=ContactOptions(precondition=flag)
+        )
     plain, pre = out[False], out[True]
     assert 0.05 < pre.contact_fraction < 0.3
     err = np.linalg.norm(pre.pressure - plain.pressure) / np.linalg.norm(plain.pressure)
@@ -110,11 +124,14 @@ def test_preconditioned_contact_solve_agrees_and_saves_products(material):
 RUBBER20 = bem.Material.from_prony(E0=1e6, moduli=np.full(20, (1e9 - 1e6) / 20), times=np.logspace(-10, 2, 20))
 
 
-@pytest.mark.parametrize("n, material, speed, load", [
-    (512, bem.Material.elastic(1e7), 0.0, 3.0),  # coarse start, CG, R A^-1 R^T
-    (256, bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01), 0.01, 3.0),  # GMRES
-    (128, RUBBER20, 1e-2 * 0.01 / 100, 4.0),  # line preconditioner
-])
+@pytest.mark.parametrize(
+    "n, material, speed, load",
+    [
+        (512, bem.Material.elastic(1e7), 0.0, 3.0),  # coarse start, CG, R A^-1 R^T
+        (256, bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01), 0.01, 3.0),  # GMRES
+        (128, RUBBER20, 1e-2 * 0.01 / 100, 4.0),  # line preconditioner
+    ],
+)
 def test_single_precision_inner_solves_change_nothing_but_the_cost(n, material, speed, load):
     """Inner products and preconditioners in float32 (``ContactOptions.single_precision``) for inner
     solves that stop at 1e-3 of their right-hand sides or above, far above float32's
@@ -126,8 +143,15 @@ def test_single_precision_inner_solves_change_nothing_but_the_cost(n, material, 
     s = bem.surfaces.self_affine(n, 0.01, hurst=0.8, scales=n // 8, rms_height=2e-5, seed=3)
     out = {}
     for flag in (False, True):
-        out[flag] = bem.solve(s, material, speed=speed, load=load, rtol=1e-8, maxiter=1000,
-                              contact_options=ContactOptions(single_precision=flag))
+        out[flag] = bem.solve(
+            s,
+            material,
+            speed=speed,
+            load=load,
+            rtol=1e-8,
+            maxiter=1000,
+            contact_options=ContactOptions(single_precision=flag),
+        )
     double, single = out[False], out[True]
     assert 0.03 < single.contact_fraction < 0.4
     err = np.linalg.norm(single.pressure - double.pressure) / np.linalg.norm(double.pressure)

@@ -2,6 +2,7 @@
 
 Each check runs in a fresh interpreter, so modules imported by other tests do not count.
 """
+
 import json
 import subprocess
 import sys
@@ -9,14 +10,31 @@ from pathlib import Path
 
 import pytest
 
-FORBIDDEN = ["matplotlib", "skfem", "meshio", "pyvista", "vtk", "tqdm", "rich", "fem_reference",
-             "validation", "viscobem_cli", "pandas", "numba"]
+FORBIDDEN = [
+    "matplotlib",
+    "skfem",
+    "meshio",
+    "pyvista",
+    "vtk",
+    "tqdm",
+    "rich",
+    "fem_reference",
+    "validation",
+    "viscobem_cli",
+    "pandas",
+    "numba",
+]
 
 
 def _modules_after(statement):
     code = f"import sys, json; {statement}; print(json.dumps(sorted(sys.modules)))"
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
-                         cwd=Path(__file__).resolve().parents[1])  # the repository root, where bem/ is
+    out = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        check=True,
+        cwd=Path(__file__).resolve().parents[1],
+    )  # the repository root, where bem/ is
     return {name.split(".")[0] for name in json.loads(out.stdout.splitlines()[-1])}
 
 
@@ -38,5 +56,6 @@ def test_a_solve_without_progress_imports_no_progress_bar():
     """tqdm is imported lazily, by friction_curve only."""
     modules = _modules_after(
         "import bem; from bem import surfaces; "
-        "bem.solve(surfaces.sinusoid(32, 1e-3, amplitude=1e-6), bem.Material.elastic(1e7), speed=0, load=1.0)")
+        "bem.solve(surfaces.sinusoid(32, 1e-3, amplitude=1e-6), bem.Material.elastic(1e7), speed=0, load=1.0)"
+    )
     assert not {"tqdm", "matplotlib", "skfem", "pyvista"} & modules

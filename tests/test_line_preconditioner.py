@@ -6,8 +6,10 @@ the elastic operator (unit modulus) and ``C`` the creep compliance, a convolutio
 The preconditioner of the system on the contact set ``R A R^T`` is
 ``(R C R^T)^-1 R G^-1 R^T``; these tests rebuild both factors as dense matrices.
 """
+
 import numpy as np
 import pytest
+from conftest import dense_operator
 
 import bem
 import bem.line_preconditioner as line_module
@@ -15,7 +17,6 @@ from bem import contact_inner
 from bem.contact import ContactOptions
 from bem.line_preconditioner import line_preconditioner as lines_of
 from bem.periodic import PeriodicHalfSpace
-from conftest import dense_operator
 
 L = 0.01
 RUBBER = bem.Material.from_prony(E0=1e6, moduli=np.full(20, (1e9 - 1e6) / 20), times=np.logspace(-10, 2, 20))
@@ -60,13 +61,20 @@ def test_line_preconditioner_is_restricted_creep_inverse_after_elastic_inverse(s
     expected = np.linalg.solve(C[np.ix_(idx, idx)], w)
     # the line inverses are stored in float32: exact up to its rounding times the
     # condition number of the line systems
-    tol = 10 * np.finfo(np.float32).eps * max(
-        np.linalg.cond(C[np.ix_(line, line)]) for line in
-        (idx[idx % shape[1] == y] for y in range(shape[1])) if line.size)
+    tol = (
+        10
+        * np.finfo(np.float32).eps
+        * max(
+            np.linalg.cond(C[np.ix_(line, line)])
+            for line in (idx[idx % shape[1] == y] for y in range(shape[1]))
+            if line.size
+        )
+    )
     built = []  # lines whose dense matrix is formed and inverted, per call
     line_matrices = line_module._line_matrices
-    monkeypatch.setattr(line_module, "_line_matrices",
-                        lambda kernel, x, valid: built.append(len(x)) or line_matrices(kernel, x, valid))
+    monkeypatch.setattr(
+        line_module, "_line_matrices", lambda kernel, x, valid: built.append(len(x)) or line_matrices(kernel, x, valid)
+    )
     cache = {}
     got = lines_of(op, contact_set, cache=cache)(r)
     np.testing.assert_allclose(got, expected, rtol=tol, atol=tol * np.abs(expected).max())

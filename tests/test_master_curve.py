@@ -21,9 +21,7 @@ HZ = np.logspace(-1, 2, 13)
 
 
 def truth():
-    return Material.from_prony(
-        E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11)
-    )
+    return Material.from_prony(E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11))
 
 
 def sweeps(material, law, seed, noise=0.01, temps=TEMPS):
@@ -53,10 +51,7 @@ def data_errors(fit, law, m, true_law, temps=TEMPS):
     for t in temps:
         e = m.at_temperature(t, true_law).complex_modulus(w)
         f = fit.at_temperature(t, law).complex_modulus(w)
-        d1, d2 = (
-            max(d1, np.max(np.abs(f.real / e.real - 1))),
-            max(d2, np.max(np.abs(f.imag / e.imag - 1))),
-        )
+        d1, d2 = (max(d1, np.max(np.abs(f.real / e.real - 1))), max(d2, np.max(np.abs(f.imag / e.imag - 1))))
     return d1, d2
 
 
@@ -64,9 +59,7 @@ def test_noise_free_sweeps_give_the_law_and_the_series():
     """Measured: C1, C2 within 2.2e-4; every sweep reproduced within 4e-4 (bounds 2e-3 and 1e-2:
     the overlap shifts interpolate linearly between points 0.25 decades apart)."""
     m = truth()
-    fit, law = Material.fit_master_curve(
-        *sweeps(m, LAW, 0, noise=0.0), reference_temperature=TREF, hz=True
-    )
+    fit, law = Material.fit_master_curve(*sweeps(m, LAW, 0, noise=0.0), reference_temperature=TREF, hz=True)
     assert isinstance(law, WLF) and law.reference_temperature == TREF
     assert law.C1 == pytest.approx(LAW.C1, rel=2e-3) and law.C2 == pytest.approx(LAW.C2, rel=2e-3)
     assert max(data_errors(fit, law, m, LAW)) < 1e-2
@@ -95,9 +88,7 @@ def test_arrhenius_law_and_a_reference_between_sweeps():
     m, true = truth(), Arrhenius(300e3, 300.0)
     temps = 300.0 + np.arange(-27.5, 40.0, 5.0)
     f, T, e1, e2 = sweeps(m, true, 4, temps=temps)
-    fit, law = Material.fit_master_curve(
-        f, T, e1, e2, reference_temperature=300.0, shift="arrhenius", hz=True
-    )
+    fit, law = Material.fit_master_curve(f, T, e1, e2, reference_temperature=300.0, shift="arrhenius", hz=True)
     assert isinstance(law, Arrhenius)
     assert law.activation_energy == pytest.approx(300e3, rel=0.02)
     d1, d2 = data_errors(fit, law, m, true, temps)
@@ -109,14 +100,10 @@ def test_a_mislabelled_sweep_shows_in_the_law_residual():
     than with correct labels (measured law_rms 0.093 vs 0.012 decades)."""
     m = truth()
     f, T, e1, e2 = sweeps(m, LAW, 1)
-    good = Material.fit_master_curve(f, T, e1, e2, reference_temperature=TREF, hz=True)[
-        0
-    ].fit_report
+    good = Material.fit_master_curve(f, T, e1, e2, reference_temperature=TREF, hz=True)[0].fit_report
     bad_T = T.copy()
     bad_T[T == TEMPS[14]] = TEMPS[14] - 7.5  # between the sweeps at TEMPS[12] and TEMPS[13]
-    bad = Material.fit_master_curve(f, bad_T, e1, e2, reference_temperature=TREF, hz=True)[
-        0
-    ].fit_report
+    bad = Material.fit_master_curve(f, bad_T, e1, e2, reference_temperature=TREF, hz=True)[0].fit_report
     assert bad.law_rms > 3 * good.law_rms
 
 
@@ -136,13 +123,9 @@ def test_bad_master_curve_input_is_named():
         Material.fit_master_curve(f, T, e1, e2, shift="vft", **kw)
     with pytest.raises(InputError, match=">= 3 temperatures"):
         keep = T < TEMPS[2]
-        Material.fit_master_curve(
-            f[keep], T[keep], e1[keep], e2[keep], reference_temperature=TEMPS[0], hz=True
-        )
+        Material.fit_master_curve(f[keep], T[keep], e1[keep], e2[keep], reference_temperature=TEMPS[0], hz=True)
     with pytest.raises(InputError, match="temperatures"):
         Material.fit_master_curve(f, T[:-1], e1, e2, **kw)
     sparse = np.isin(T, TEMPS[::4])
-    with pytest.raises(
-        InputError, match=r"do not overlay \(rms log10 mismatch 0.2"
-    ):  # 4 decades apart
+    with pytest.raises(InputError, match=r"do not overlay \(rms log10 mismatch 0.2"):  # 4 decades apart
         Material.fit_master_curve(f[sparse], T[sparse], e1[sparse], e2[sparse], **kw)

@@ -35,9 +35,7 @@ def test_modulus_times_compliance_is_one(name):
     """``E(w) J(w) = 1`` on a dense grid; measured worst 9e-16, bound 1e-13 (a few hundred ulps)."""
     m = MATERIALS[name]
     assert np.all(m.compliances > 0) and np.all(m.creep_times > 0)
-    np.testing.assert_allclose(
-        m.complex_modulus(W) * m.complex_compliance(W), 1.0, rtol=0, atol=1e-13
-    )
+    np.testing.assert_allclose(m.complex_modulus(W) * m.complex_compliance(W), 1.0, rtol=0, atol=1e-13)
     np.testing.assert_allclose(m.complex_compliance(W), 1 / m.complex_modulus(W), rtol=1e-13)
     assert np.all(m.complex_modulus(W).imag > 0)  # a passive solid dissipates at every w > 0
 
@@ -65,9 +63,7 @@ def test_creep_form_of_the_seed_material():
     np.testing.assert_allclose(a.complex_modulus(W), b.complex_modulus(W), rtol=1e-14)
     assert a.compliances[0] == pytest.approx(1 / a.E0 - 1 / a.E_inf, rel=1e-14)
     c = Material.from_creep(E0=1e7 / 3, compliances=[2e-7], times=[0.01])
-    assert c.E_inf == pytest.approx(1e7, rel=1e-14) and c.relaxation_times[0] == pytest.approx(
-        0.01 / 3, rel=1e-14
-    )
+    assert c.E_inf == pytest.approx(1e7, rel=1e-14) and c.relaxation_times[0] == pytest.approx(0.01 / 3, rel=1e-14)
 
 
 @pytest.mark.parametrize("name", MATERIALS)
@@ -81,9 +77,7 @@ def test_time_domain_limits(name):
     assert m.complex_modulus(0.0) == pytest.approx(m.E0, rel=1e-14)
     assert abs(m.complex_modulus(1e6 / m.relaxation_times.min()) / m.E_inf - 1) < 1e-5
     t = np.logspace(-9, 9, 500)
-    assert np.all(np.diff(m.creep_compliance(t)) >= 0) and np.all(
-        np.diff(m.relaxation_modulus(t)) <= 0
-    )
+    assert np.all(np.diff(m.creep_compliance(t)) >= 0) and np.all(np.diff(m.relaxation_modulus(t)) <= 0)
     assert np.all(m.relaxation_modulus(t) * m.creep_compliance(t) <= 1 + 1e-12)  # E(t) J(t) <= 1
 
 
@@ -98,9 +92,7 @@ def test_laplace_transforms_are_reciprocal(s):
     def laplace(f):
         edges = np.unique(np.concatenate([[0.0], np.sort(breaks), [40.0 / s + 40 * breaks.max()]]))
         return sum(
-            integrate.quad(
-                lambda t: f(t) * np.exp(-s * t), a, b, epsabs=0, epsrel=1e-12, limit=200
-            )[0]
+            integrate.quad(lambda t: f(t) * np.exp(-s * t), a, b, epsabs=0, epsrel=1e-12, limit=200)[0]
             for a, b in zip(edges[:-1], edges[1:])
         )
 
@@ -176,9 +168,7 @@ def test_material_is_frozen_and_its_arrays_read_only():
     for arr in (m.moduli, m.relaxation_times, m.compliances, m.creep_times):
         with pytest.raises(ValueError):
             arr[0] = 1.0
-    assert np.all(np.diff(m.relaxation_times) < 0) and np.all(
-        np.diff(m.creep_times) < 0
-    )  # longest first
+    assert np.all(np.diff(m.relaxation_times) < 0) and np.all(np.diff(m.creep_times) < 0)  # longest first
 
 
 def test_elastic_material():
@@ -203,9 +193,7 @@ def test_any_prony_series_interconverts(log_times, log_moduli):
     assert np.all(m.compliances > 0)
     tau, lam = np.sort(m.relaxation_times), np.sort(m.creep_times)
     assert np.all(lam > tau) and np.all(lam[:-1] < tau[1:])  # one retardation time per interval
-    np.testing.assert_allclose(
-        m.complex_modulus(W) * m.complex_compliance(W), 1.0, rtol=0, atol=1e-12
-    )
+    np.testing.assert_allclose(m.complex_modulus(W) * m.complex_compliance(W), 1.0, rtol=0, atol=1e-12)
 
 
 def test_term_order_does_not_matter():

@@ -15,9 +15,7 @@ def test_materials_benchmark_runs_from_the_cli(tmp_path):
     assert "| method | terms |" in (tmp_path / "materials.md").read_text()
     ours, pyvisco = result["prony12"][0], result["prony12"][1]
     assert ours["method"].startswith("viscobem") and pyvisco["method"] == "pyvisco"
-    assert (
-        ours["storage_max"] < 0.03 and ours["loss_max"] < 0.05
-    )  # the targets, 12 decades, 1 % noise
+    assert ours["storage_max"] < 0.03 and ours["loss_max"] < 0.05  # the targets, 12 decades, 1 % noise
     assert all(ours["loss_max"] < r["loss_max"] for r in result["prony12"][1:])
     mc = result["master"][0]
     assert mc["C1_rel"] < 0.02 and mc["C2_rel"] < 0.02 and mc["log_aT_max"] < 0.1

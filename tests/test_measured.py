@@ -2,6 +2,7 @@
 SurfaceTopography in four instrument formats (NetCDF, X3P, Gwyddion, plain text with a
 header) and a bare matrix, read back in metres; detrending, square patch, boundary choice,
 resampling and the PSD report."""
+
 import subprocess
 import sys
 
@@ -97,7 +98,9 @@ def test_periodic_fourier_resampling_is_exact_for_resolved_modes():
     """A periodic scan of two modes below the grid's Nyquist comes back exactly on a coarser grid."""
     n_scan, n, side = 96, 32, 2e-5
     x = np.arange(n_scan) / n_scan
-    f = lambda x, y: 1e-7 * np.cos(2 * np.pi * 3 * x)[:, None] + 5e-8 * np.sin(2 * np.pi * (5 * x[:, None] + 2 * y[None, :]))
+    f = lambda x, y: (
+        1e-7 * np.cos(2 * np.pi * 3 * x)[:, None] + 5e-8 * np.sin(2 * np.pi * (5 * x[:, None] + 2 * y[None, :]))
+    )
     m = measured.Measurement(f(x, x), (side, side), periodic=True)
     s = measured_grid.to_surface(m, n, boundary="periodic", window="none")
     xg = np.arange(n) / n

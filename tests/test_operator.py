@@ -3,6 +3,7 @@
 Every check here is exact up to round-off (FFTs of size <= 64**2: a few 1e-15 relative),
 so the bounds are 1e-12 unless stated.
 """
+
 import numpy as np
 import pytest
 from conftest import dense_operator, make_prony30, make_seed
@@ -67,7 +68,7 @@ def test_reflection_in_x_transposes_and_in_y_commutes(shape):
 def test_matches_the_full_spectrum_symbol(shape):
     """Against ``2 (1 - nu**2) / |q| / E*(w = -q_x v)`` on numpy's full spectrum: for odd n the
     complex result is real; for even n the x-Nyquist mode makes it complex and the operator
-    keeps its real part (SPEC §7: the symbol is not Hermitian there)."""
+    keeps its real part (docs/theory.md §12: the symbol is not Hermitian there)."""
     m = make_prony30()
     op = _op(shape, m, xi=1e-2)
     p = RNG.random(shape)

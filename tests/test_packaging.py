@@ -1,6 +1,7 @@
 """The wheel must contain every package and data file the code reads: CI installs with
 ``pip install .`` (not editable), so a package or data file missing from pyproject.toml only
 fails there. Checked here against the source tree."""
+
 import fnmatch
 from pathlib import Path
 
@@ -76,8 +77,10 @@ def test_import_bem_is_lazy():
     import subprocess
     import sys
 
-    code = ("import sys, json, bem; before = sorted(sys.modules); bem.solve; bem.persson; "
-            "print(json.dumps([before, sorted(sys.modules), sorted(dir(bem))]))")
+    code = (
+        "import sys, json, bem; before = sorted(sys.modules); bem.solve; bem.persson; "
+        "print(json.dumps([before, sorted(sys.modules), sorted(dir(bem))]))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
     before, after, names = json.loads(out.stdout)
     for heavy in ("scipy.signal", "scipy.optimize", "bem.persson", "bem.anisotropy", "bem.sliding", "bem.material"):

@@ -1,4 +1,5 @@
 """Persson's theory: exact in full contact (equal to the BEM), continuous = discrete."""
+
 import numpy as np
 import pytest
 
@@ -18,8 +19,9 @@ def test_discrete_full_contact_theory_is_the_bem(seed, smooth_surface, speed):
     load = 2e3
     res = bem.solve(smooth_surface, seed, speed=speed, load=load)
     assert res.contact_fraction == 1.0
-    mu, area = persson.friction_discrete(smooth_surface, seed, speeds=[speed], pressure=load / 0.01**2,
-                                         partial_contact=False)
+    mu, area = persson.friction_discrete(
+        smooth_surface, seed, speeds=[speed], pressure=load / 0.01**2, partial_contact=False
+    )
     # the same sum over the same modes (E from the Prony series, the BEM's J from the creep
     # series: E J = 1 to round-off); measured agreement 3e-14
     assert mu[0] == pytest.approx(res.friction, rel=1e-10)
@@ -41,8 +43,9 @@ def test_continuous_integral_matches_the_lattice_sum(seed, partial):
     speeds = [0.01, 1.0]
     errors = []
     for n, scales, rolloff in [(128, 32, 2), (256, 64, 4)]:
-        s = bem.surfaces.self_affine(n, 0.01 * rolloff, hurst=0.8, scales=scales, rolloff=rolloff,
-                                     rms_height=2e-5, seed=1)
+        s = bem.surfaces.self_affine(
+            n, 0.01 * rolloff, hurst=0.8, scales=scales, rolloff=rolloff, rms_height=2e-5, seed=1
+        )
         mu_d, a_d = persson.friction_discrete(s, seed, speeds=speeds, pressure=3000, partial_contact=partial)
         mu_c, a_c = persson.friction_for_surface(s, seed, speeds=speeds, pressure=3000, partial_contact=partial)
         errors.append(np.abs(mu_c / mu_d - 1))
@@ -53,8 +56,9 @@ def test_continuous_integral_matches_the_lattice_sum(seed, partial):
     assert np.all(errors[1] < (0.004 if not partial else 0.10))
     assert np.all(errors[1] < errors[0])
     # the quadrature itself is converged: doubling the nodes changes mu by < 1e-6
-    fine, _ = persson.friction_for_surface(s, seed, speeds=speeds, pressure=3000, partial_contact=partial,
-                                           points=801, angles=512)
+    fine, _ = persson.friction_for_surface(
+        s, seed, speeds=speeds, pressure=3000, partial_contact=partial, points=801, angles=512
+    )
     assert fine == pytest.approx(mu_c, rel=1e-6)
 
 
@@ -73,5 +77,6 @@ def test_bad_input(seed, smooth_surface):
     with pytest.raises(InputError, match="q1"):
         persson.friction(seed, psd=lambda q: q**-3, q0=10.0, q1=1.0, speeds=[1.0], pressure=1.0)
     with pytest.raises(InputError, match="self_affine"):
-        persson.friction_for_surface(bem.surfaces.sinusoid(16, 1.0, amplitude=1e-3, dim=2), seed,
-                                     speeds=[1.0], pressure=1.0)
+        persson.friction_for_surface(
+            bem.surfaces.sinusoid(16, 1.0, amplitude=1e-3, dim=2), seed, speeds=[1.0], pressure=1.0
+        )

@@ -17,17 +17,13 @@ W = np.logspace(-4, 8, 121)
 
 
 def dma_truth():
-    return Material.from_prony(
-        E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11)
-    )
+    return Material.from_prony(E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11))
 
 
 def noisy(m, seed, level=0.01):
     rng = np.random.default_rng(seed)
     e = m.complex_modulus(W)
-    return e.real * (1 + level * rng.standard_normal(W.size)), e.imag * (
-        1 + level * rng.standard_normal(W.size)
-    )
+    return e.real * (1 + level * rng.standard_normal(W.size)), e.imag * (1 + level * rng.standard_normal(W.size))
 
 
 def errors(fit, m):
@@ -40,9 +36,7 @@ def test_both_moduli_hold_over_12_decades_with_1_percent_noise(seed):
     """Targets E' 3 %, E'' 5 %. Measured (seeds 1-3): E' 0.46-0.54 %, E'' 0.82-1.02 %."""
     m = dma_truth()
     e = m.complex_modulus(W)
-    assert (
-        0.005 < np.min(e.imag[-10:] / e.real[-10:]) < 0.06
-    )  # a glassy tail with a small tan delta
+    assert 0.005 < np.min(e.imag[-10:] / e.real[-10:]) < 0.06  # a glassy tail with a small tan delta
     fit = Material.fit_prony(W, *noisy(m, seed))
     d1, d2 = errors(fit, m)
     assert d1 < 0.03 and d2 < 0.05
@@ -65,12 +59,7 @@ def test_weighting_by_the_modulus_magnitude_misses_the_glassy_tail():
         ]
     )
     cn = np.linalg.norm(a, axis=0)
-    x = (
-        nnls(
-            a / cn, np.concatenate([e1, e2]) / np.concatenate([mag[:, 0], mag[:, 0]]), maxiter=5000
-        )[0]
-        / cn
-    )
+    x = nnls(a / cn, np.concatenate([e1, e2]) / np.concatenate([mag[:, 0], mag[:, 0]]), maxiter=5000)[0] / cn
     keep = x[1:] > 0
     d1, d2 = errors(Material.from_prony(E0=x[0], moduli=x[1:][keep], times=taus[keep]), m)
     assert d2 > 0.05
@@ -129,9 +118,7 @@ def test_optimised_times_match_a_spectrum_between_the_grid_times():
     """Noise-free data from 11 terms placed between the default grid's times (3 per decade):
     NNLS on the grid alone leaves measured 3.8 % in E' and 4.1 % in E''; moving the times
     too recovers the series to round-off (measured 4e-15, bound 1e-9)."""
-    m = Material.from_prony(
-        E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-6.85, 3.15, 11)
-    )
+    m = Material.from_prony(E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-6.85, 3.15, 11))
     e = m.complex_modulus(W)
     taus = default_times(W, 3.0)
     grid = fit_prony_series(W, e.real, e.imag, taus, refine=False)

@@ -14,6 +14,7 @@
 Small grids (1-D 32–64 points, 2-D 8²–16²) and few examples keep the file under ~30 s;
 ``derandomize=True`` makes every run draw the same examples (seeded, reproducible).
 """
+
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -25,10 +26,8 @@ from bem.periodic import PeriodicHalfSpace
 from validation import periodic_exact as ref
 
 L = 0.01
-FEW = settings(max_examples=12, deadline=None, derandomize=True,
-               suppress_health_check=[HealthCheck.too_slow])
-SOME = settings(max_examples=25, deadline=None, derandomize=True,
-                suppress_health_check=[HealthCheck.too_slow])
+FEW = settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+SOME = settings(max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 
 log_ratio = st.floats(np.log10(1.01), 2.0)  # E_inf / E0 from 1.01 to 100 (cheap solves)
 log_xi = st.floats(-3.0, 3.0)
@@ -47,8 +46,9 @@ def speed_of(m, log_x):
 
 def rough(shape, seed, hurst=0.8):
     n = shape[0]
-    return bem.surfaces.self_affine(n, L, hurst=hurst, scales=max(1, n // 4), rms_height=1e-5, seed=seed,
-                                    dim=len(shape))
+    return bem.surfaces.self_affine(
+        n, L, hurst=hurst, scales=max(1, n // 4), rms_height=1e-5, seed=seed, dim=len(shape)
+    )
 
 
 def full_contact_load(surface, m, speed):
@@ -60,8 +60,9 @@ def full_contact_load(surface, m, speed):
 
 # ---------------------------------------------------------------- the operator
 @SOME
-@given(shape=shapes, log_r=log_ratio, log_x=log_xi, nu=nus, seed=seeds,
-       alpha=st.floats(-10, 10), beta=st.floats(-10, 10))
+@given(
+    shape=shapes, log_r=log_ratio, log_x=log_xi, nu=nus, seed=seeds, alpha=st.floats(-10, 10), beta=st.floats(-10, 10)
+)
 def test_operator_is_linear_and_matches_independent_one(shape, log_r, log_x, nu, seed, alpha, beta):
     m = material(log_r, nu)
     v = speed_of(m, log_x)
@@ -71,8 +72,7 @@ def test_operator_is_linear_and_matches_independent_one(shape, log_r, log_x, nu,
     u1, u2 = op.displacement(p1), op.displacement(p2)
     scale = np.abs(u1).max() + np.abs(u2).max()
     # round-off of one FFT pair (~1e-15 relative) times |alpha|, |beta| <= 10
-    assert np.allclose(op.displacement(alpha * p1 + beta * p2), alpha * u1 + beta * u2,
-                       rtol=0, atol=1e-12 * 20 * scale)
+    assert np.allclose(op.displacement(alpha * p1 + beta * p2), alpha * u1 + beta * u2, rtol=0, atol=1e-12 * 20 * scale)
     # an operator built from numpy FFTs and the relaxation (not creep) series: agreement to
     # round-off checks the FFT layout, the x-Nyquist rule and the series interconversion
     u_ref = ref.displacement(p1, ref.symbol(shape, L, m, v))
@@ -89,8 +89,8 @@ def test_dissipation_is_non_negative_for_any_pressure(shape, log_r, log_x, seed)
     d = op.dissipation_integral(bem.fft.forward(p))
     # the same integral from the field, by an independent spectral derivative
     u = ref.displacement(p, ref.symbol(shape, L, m, v))
-    d_field = -float(np.mean(p * ref.x_derivative(u, L))) * L**len(shape)
-    bound = 1e-12 * float(np.mean(np.abs(p * u))) * L**len(shape) * np.pi * shape[0] / L  # round-off
+    d_field = -float(np.mean(p * ref.x_derivative(u, L))) * L ** len(shape)
+    bound = 1e-12 * float(np.mean(np.abs(p * u))) * L ** len(shape) * np.pi * shape[0] / L  # round-off
     assert d >= -bound and d_field >= -bound
     assert d == pytest.approx(d_field, rel=1e-9, abs=bound)
 
@@ -109,7 +109,7 @@ def _problem(shape, log_r, log_x, seed, level):
 def test_load_balance_and_sanity(shape, log_r, log_x, seed, level):
     m, v, s, load = _problem(shape, log_r, log_x, seed, level)
     res = bem.solve(s, m, speed=v, load=load)
-    area = L**len(shape)
+    area = L ** len(shape)
     assert res.success and res.residual <= 1e-8
     assert res.pressure.mean() * area == pytest.approx(load, rel=1e-12)  # round-off
     assert res.pressure.min() >= 0 and 0 < res.contact_fraction <= 1
@@ -138,13 +138,12 @@ def test_elastic_limits(shape, log_r, seed, level):
     :func:`_limit_operator` for the modes constant along x)."""
     m = material(log_r)
     s = rough(shape, seed)
-    area = L**len(shape)
+    area = L ** len(shape)
     for log_x, modulus in [(-10.0, m.E0), (10.0, m.E_inf)]:
         v = speed_of(m, log_x)
         load = 10**level * full_contact_load(s, m, v)
         res = bem.solve(s, m, speed=v, load=load, rtol=1e-10)
-        elastic = solve_contact(_limit_operator(shape, m, modulus), s.heights, mean_pressure=load / area,
-                                rtol=1e-10)
+        elastic = solve_contact(_limit_operator(shape, m, modulus), s.heights, mean_pressure=load / area, rtol=1e-10)
         # the compliance differs from the limit by O(xi q L) = O(1e-7) (or its inverse)
         # relative; the contact problem's solution is Lipschitz in it
         err = np.linalg.norm(res.pressure - elastic.pressure) / np.linalg.norm(elastic.pressure)
@@ -163,8 +162,7 @@ def _reflect(field, axis):
 def test_reflection_y_maps_solution(n, log_r, log_x, seed, level):
     m, v, s, load = _problem((n, n), log_r, log_x, seed, level)
     res = bem.solve(s, m, speed=v, load=load, rtol=1e-10)
-    mirrored = bem.solve(bem.surfaces.from_heights(_reflect(s.heights, 1), L), m, speed=v, load=load,
-                         rtol=1e-10)
+    mirrored = bem.solve(bem.surfaces.from_heights(_reflect(s.heights, 1), L), m, speed=v, load=load, rtol=1e-10)
     # same problem up to a relabelling of the y index: equal to the solver's tolerance
     scale = np.abs(res.pressure).max()
     assert np.max(np.abs(mirrored.pressure - _reflect(res.pressure, 1))) <= 1e-6 * scale
@@ -176,9 +174,8 @@ def test_reflection_y_maps_solution(n, log_r, log_x, seed, level):
 @given(shape=shapes, log_r=log_ratio, log_x=log_xi, seed=seeds, level=st.floats(-2, 0))
 def test_reversed_sliding_mirrors_solution(shape, log_r, log_x, seed, level):
     m, v, s, load = _problem(shape, log_r, log_x, seed, level)
-    area = L**len(shape)
-    forward = bem.solve(bem.surfaces.from_heights(_reflect(s.heights, 0), L), m, speed=v, load=load,
-                        rtol=1e-10)
+    area = L ** len(shape)
+    forward = bem.solve(bem.surfaces.from_heights(_reflect(s.heights, 0), L), m, speed=v, load=load, rtol=1e-10)
     backward_op = PeriodicHalfSpace(shape, L, m, -v)  # sliding in -x
     backward = solve_contact(backward_op, s.heights, mean_pressure=load / area, rtol=1e-10)
     scale = np.abs(backward.pressure).max()

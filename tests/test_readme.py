@@ -26,12 +26,7 @@ def test_readme_starts_with_the_two_setup_commands():
 def test_readme_python_quick_start_runs(tmp_path):
     code = re.search(r"```python\n(.*?)```", README, re.DOTALL).group(1)
     run = subprocess.run(
-        [sys.executable, "-c", code],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=300,
-        check=False,
+        [sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=300, check=False
     )
     assert run.returncode == 0, run.stderr
     assert "True" in run.stdout  # result.success

@@ -1,10 +1,11 @@
-"""SPEC §3: the solver converges for every speed, E_inf/E0 up to 1e4, Prony series of 30
+"""docs/theory.md §8: the solver converges for every speed, E_inf/E0 up to 1e4, Prony series of 30
 terms and loads from one contact spot to full contact — or raises. Here it must converge.
 
 Grid: 1-D profiles of 128 points and 2-D surfaces of 32² (the 64² version of the same
 sweep is marked slow). Each converged result must also be physically sane: p >= 0, gap
 >= -rtol * ptp(h), load balance, finite non-negative friction.
 """
+
 import itertools
 
 import numpy as np

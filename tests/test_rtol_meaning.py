@@ -32,6 +32,7 @@ cylinder with ``E_inf/E0 = 100`` (isolated, 4096 cells) measures 66 x rtol with
 ``gap_scale`` = 10, and 3.2 x rtol with ``gap_scale_strong`` = 0.3, the default for them
 (held at 1e-4 of the height range: ``gap_floor_share``).
 """
+
 import numpy as np
 import pytest
 
@@ -49,7 +50,7 @@ R = 0.01
 def _cylinder(material, load, n, width):
     a = line_contact(material.E0, material.nu, R, load).a
     x = (np.arange(n) + 0.5) * width * a / n - width * a / 2
-    return bem.surfaces.from_heights(-x**2 / (2 * R), width * a, centered=True), a
+    return bem.surfaces.from_heights(-(x**2) / (2 * R), width * a, centered=True), a
 
 
 def _sphere(material, load, n, width):
@@ -89,10 +90,23 @@ def _case(name):
     return s, SLS, dict(speed=0.3 * a / 0.01 if "rolling" in name else 0.0, **dict(isolated, load=1.0))
 
 
-CASES = ["1d-rough-elastic", "1d-rough-sls", "1d-rough-sls-approach", "2d-rough-elastic", "2d-rough-sls",
-         "2d-rough-elastic-approach", "2d-rough-rubber", "1d-sinusoid-elastic", "2d-sinusoid-sls",
-         "isolated-cylinder", "isolated-cylinder-rolling", "isolated-cylinder-wide",
-         "isolated-cylinder-wide-rolling", "isolated-sphere", "isolated-sphere-rolling"]
+CASES = [
+    "1d-rough-elastic",
+    "1d-rough-sls",
+    "1d-rough-sls-approach",
+    "2d-rough-elastic",
+    "2d-rough-sls",
+    "2d-rough-elastic-approach",
+    "2d-rough-rubber",
+    "1d-sinusoid-elastic",
+    "2d-sinusoid-sls",
+    "isolated-cylinder",
+    "isolated-cylinder-rolling",
+    "isolated-cylinder-wide",
+    "isolated-cylinder-wide-rolling",
+    "isolated-sphere",
+    "isolated-sphere-rolling",
+]
 
 
 def _ratio(surface, material, kw, rtol, options=None):

@@ -1,7 +1,9 @@
 """The periodic contact solver (bem.solve): dense reference, elastic limits, physics of a
 single bump, the two friction forms, and the solver's contracts."""
+
 import numpy as np
 import pytest
+from conftest import dense_contact, make_prony30, make_seed
 
 import bem
 from bem import surfaces
@@ -9,7 +11,6 @@ from bem.contact import solve_contact
 from bem.errors import ConvergenceError
 from bem.periodic import PeriodicHalfSpace
 from bem.statistics import rms_slope
-from conftest import dense_contact, make_prony30, make_seed
 
 L = 1e-3
 
@@ -27,8 +28,7 @@ def _load(surface, modulus, frac=0.2):
 DENSE_CASES = [(1, 64, 0.5), (2, 24, 0.3)]  # (dim, n, rigid overlap / peak-to-valley)
 
 
-@pytest.mark.parametrize("dim, n, overlap", DENSE_CASES + [
-    pytest.param(2, 32, 0.45, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("dim, n, overlap", DENSE_CASES + [pytest.param(2, 32, 0.45, marks=pytest.mark.slow)])
 @pytest.mark.parametrize("xi", [1e-2, 1e-1, 1.0, 10.0])
 def test_matches_dense_principal_pivoting(dim, n, overlap, xi):
     """Same pressure as an obviously correct direct LCP solve (validation.periodic_exact.murty_lcp), at the
@@ -69,7 +69,7 @@ def test_dense_reference_30_terms(xi, ratio):
 
 @pytest.mark.parametrize("n", [32, 64])
 def test_converges_for_broad_spectra_in_2d(n):
-    """SPEC §3: converge for every E_inf/E0 up to 1e4 (or raise). 30 terms, xi = 1e-2: the
+    """docs/theory.md §8: converge for every E_inf/E0 up to 1e4 (or raise). 30 terms, xi = 1e-2: the
     LCP is a P-matrix one with a unique solution; the damped active set with inner solves
     tightened on damping converges (before that fix it raised with residual 1e-3..1e-2)."""
     m, s, v = make_prony30(1e4), _rough(n, 2, seed=4), 1e-2 * L
@@ -119,7 +119,7 @@ def test_high_speed_limit_is_elastic_with_E_inf(material_name):
 def _cylinder(n=1024, length=1e-2, radius=5e-3):
     """Parabolic bump (cylinder of radius 5 mm) at mid-cell, flattened 0.2 mm below its apex."""
     x = np.arange(n) * length / n
-    return surfaces.from_heights(np.maximum(-(x - length / 2) ** 2 / (2 * radius), -2e-4), length), x
+    return surfaces.from_heights(np.maximum(-((x - length / 2) ** 2) / (2 * radius), -2e-4), length), x
 
 
 @pytest.mark.parametrize("xi", [1e-2, 1e-1, 1.0])
@@ -155,8 +155,7 @@ def test_reversing_surface_and_direction_mirrors_the_pressure():
     m, v, load = make_seed(), 0.1 * L / 0.01, _load(_rough(256, 1, seed=9), 1e7 / 3)
     res = bem.solve(s, m, speed=v, load=load, rtol=1e-12)
     flip = lambda f: np.roll(f[::-1], 1, axis=0)  # noqa: E731
-    back = solve_contact(PeriodicHalfSpace(s.shape, L, m, -v), flip(s.heights),
-                         mean_pressure=load / L, rtol=1e-12)
+    back = solve_contact(PeriodicHalfSpace(s.shape, L, m, -v), flip(s.heights), mean_pressure=load / L, rtol=1e-12)
     np.testing.assert_allclose(flip(back.pressure), res.pressure, rtol=0, atol=1e-9 * res.pressure.max())
     other = bem.solve(surfaces.from_heights(flip(s.heights), L), m, speed=v, load=load, rtol=1e-12)
     assert np.max(np.abs(flip(other.pressure) - res.pressure)) > 1e-2 * res.pressure.max()
@@ -239,8 +238,9 @@ def test_solution_satisfies_the_stated_conditions(hard):
     assert p.min() >= 0 and g.min() >= -rtol * h_ref
     r = np.max(np.abs(np.minimum(p / p.mean(), g / h_ref)))
     assert r <= rtol and r == pytest.approx(res.residual, rel=1e-6)
-    np.testing.assert_allclose(g, res.displacement - (s.heights - s.heights.max() + res.approach),
-                               rtol=0, atol=1e-14 * np.ptp(s.heights))
+    np.testing.assert_allclose(
+        g, res.displacement - (s.heights - s.heights.max() + res.approach), rtol=0, atol=1e-14 * np.ptp(s.heights)
+    )
     assert res.contact_fraction == np.mean(p > 0)
     assert res.dissipated_power == pytest.approx(res.friction * load * v, rel=1e-12)
 
@@ -294,8 +294,9 @@ def test_friction_curve_keeps_input_order_and_matches_single_solves():
     s, m = _rough(512, 1, seed=2), make_seed()
     load, speeds = _load(s, m.E0), np.array([1.0, 1e-3, 0.1, 1e-2]) * L / 0.01
     seen = []
-    curve = bem.friction_curve(s, m, speeds=speeds, load=load, rtol=1e-10,
-                               callback=lambda i, v, res, msg: seen.append(i))
+    curve = bem.friction_curve(
+        s, m, speeds=speeds, load=load, rtol=1e-10, callback=lambda i, v, res, msg: seen.append(i)
+    )
     assert curve.all_converged and sorted(seen) == [0, 1, 2, 3] and seen == [1, 3, 2, 0]  # solved ascending
     np.testing.assert_array_equal(curve.speeds, speeds)
     for i, v in enumerate(speeds):
@@ -322,8 +323,9 @@ def test_friction_forms_converge_together_on_a_rough_surface_2d():
     ns = np.array([64, 128, 256])
     diff = []
     for n in ns:
-        res = bem.solve(surfaces.from_heights(fine.heights[:: 256 // n, :: 256 // n], L), m,
-                        speed=0.1 * L / 0.01, load=load)
+        res = bem.solve(
+            surfaces.from_heights(fine.heights[:: 256 // n, :: 256 // n], L), m, speed=0.1 * L / 0.01, load=load
+        )
         diff.append(abs(res.friction - res.friction_eq6) / res.friction)
     assert np.polyfit(np.log(ns), np.log(diff), 1)[0] < -1.0
 
@@ -336,8 +338,9 @@ def test_smooth_1d_indenter_starts_from_the_symmetric_part():
     from validation.cases import cylinder, solvers
 
     material = cylinder.prony()
-    out = solvers.bem_periodic_cylinder(material, radius=cylinder.R, load=cylinder.P,
-                                        speed=cylinder._speed(material, 0.3), cells=40)
+    out = solvers.bem_periodic_cylinder(
+        material, radius=cylinder.R, load=cylinder.P, speed=cylinder._speed(material, 0.3), cells=40
+    )
     assert out["success"], out.get("message")
     assert out["result"].iterations <= 20
     assert 0.03 < out["result"].contact_fraction < 0.05

@@ -1,4 +1,4 @@
-"""Stress suite (issue 7): numerical stability over the whole parameter range of SPEC §2–3.
+"""Stress suite: numerical stability over the whole parameter range of docs/theory.md §2–4, §8.
 
 Run it separately: ``pytest -m stress`` (excluded from the default run; about 10 min on
 2 cores). Every case either converges to the stated residual with a physically sane answer,
@@ -30,6 +30,7 @@ iterations, operator products, wall time and the operator's conditioning (spread
 ``$VISCOBEM_STRESS_REPORT`` (``.json``; the CSV beside it), else pytest's temporary folder
 (the path is printed at the end of the session).
 """
+
 import csv
 import json
 import os
@@ -74,8 +75,10 @@ def _expected():
         return None
     exp = EXPECTED.get(CURRENT["id"])
     if exp is None:
-        pytest.fail(f"{CURRENT['id']}: no expected outcome in {EXPECTED_PATH.name}; regenerate it with "
-                    "VISCOBEM_STRESS_UPDATE=1 pytest -m stress")
+        pytest.fail(
+            f"{CURRENT['id']}: no expected outcome in {EXPECTED_PATH.name}; regenerate it with "
+            "VISCOBEM_STRESS_UPDATE=1 pytest -m stress"
+        )
     return exp
 
 
@@ -86,8 +89,7 @@ def _compare(record):
         return
     if record["outcome"] == "raised":
         if exp["outcome"] == "converged":
-            pytest.fail(f"new ConvergenceError (stored: converged in {exp['matvecs']} products): "
-                        f"{record['message']}")
+            pytest.fail(f"new ConvergenceError (stored: converged in {exp['matvecs']} products): {record['message']}")
         return
     if exp["outcome"] == "raised":
         record["note"] = "converges now; stored as a ConvergenceError"
@@ -139,27 +141,44 @@ def run_case(case, surface, material, xi, level, *, rtol=RTOL):
     p_fc = ref.full_contact_pressure(h - h.max(), a)
     load = level * float(-p_fc.min()) * area  # level 1 is the onset of full contact
     cond, phase = _conditioning(a)
-    record = {"id": CURRENT["id"], "case": case, "shape": "x".join(map(str, h.shape)), "E_inf/E0": material.E_inf / material.E0,
-              "terms": int(material.moduli.size), "nu": material.nu, "xi": xi, "speed": speed,
-              "load_level": level, "load": load, "rtol": rtol, "symbol_spread": cond,
-              "max_phase_deg": phase}
+    record = {
+        "id": CURRENT["id"],
+        "case": case,
+        "shape": "x".join(map(str, h.shape)),
+        "E_inf/E0": material.E_inf / material.E0,
+        "terms": int(material.moduli.size),
+        "nu": material.nu,
+        "xi": xi,
+        "speed": speed,
+        "load_level": level,
+        "load": load,
+        "rtol": rtol,
+        "symbol_spread": cond,
+        "max_phase_deg": phase,
+    }
     t0 = time.perf_counter()
     try:
         res = bem.solve(surface, material, speed=speed, load=load, rtol=rtol)
     except ConvergenceError as err:
         record.update(outcome="raised", wall_time=time.perf_counter() - t0, message=str(err))
         if err.result is not None:
-            record.update(iterations=err.result.iterations, matvecs=err.result.matvecs,
-                          residual=err.result.residual)
+            record.update(iterations=err.result.iterations, matvecs=err.result.matvecs, residual=err.result.residual)
         RECORDS.append(record)
         # the documented failure: it says so, and the result it carries is marked failed
         assert err.result is None or not err.result.success
         assert "not converged" in str(err)
         _compare(record)
         return None
-    record.update(outcome="converged", wall_time=time.perf_counter() - t0, iterations=res.iterations,
-                  matvecs=res.matvecs, residual=res.residual, contact_fraction=res.contact_fraction,
-                  friction=res.friction, message=res.message)
+    record.update(
+        outcome="converged",
+        wall_time=time.perf_counter() - t0,
+        iterations=res.iterations,
+        matvecs=res.matvecs,
+        residual=res.residual,
+        contact_fraction=res.contact_fraction,
+        friction=res.friction,
+        message=res.message,
+    )
     record["checks"] = "failed"  # until every check below has passed
     RECORDS.append(record)
     _check_sane(res, surface, material, speed, load, a, p_fc, rtol, record)
@@ -242,11 +261,9 @@ LEVELS = [1e-6, 1e-3, 0.03, 0.3, 0.9, 3.0]  # x the full-contact load: one spot 
 
 
 @pytest.mark.parametrize("level", LEVELS)
-@pytest.mark.parametrize("material, xi", [("elastic", 0.0), ("seed", 1e-2), ("sls1e4", 1.0),
-                                          ("prony40", 1.0)])
+@pytest.mark.parametrize("material, xi", [("elastic", 0.0), ("seed", 1e-2), ("sls1e4", 1.0), ("prony40", 1.0)])
 def test_loads_2d(material, xi, level):
-    mats = {"elastic": bem.Material.elastic(1e7), "seed": sls(3.0), "sls1e4": sls(1e4),
-            "prony40": prony(40, 1e4)}
+    mats = {"elastic": bem.Material.elastic(1e7), "seed": sls(3.0), "sls1e4": sls(1e4), "prony40": prony(40, 1e4)}
     res = run_case(f"load, 2-D, {material}", rough(32), mats[material], xi, level)
     if res is not None and level == LEVELS[0]:
         assert res.contact_fraction <= 2 / res.pressure.size  # one or two cells: a single spot
@@ -285,8 +302,9 @@ def test_odd_grids_2d(n, material, xi):
 @pytest.mark.parametrize("n", [255, 300, 777, 1000])
 @pytest.mark.parametrize("material, xi", [("seed", 1e-2), ("sls1e4", 1e2)])
 def test_odd_grids_1d(n, material, xi):
-    run_case("grid not 2^k, 1-D", rough(n, dim=1, scales=64),
-             {"seed": sls(3.0), "sls1e4": sls(1e4)}[material], xi, LEVEL)
+    run_case(
+        "grid not 2^k, 1-D", rough(n, dim=1, scales=64), {"seed": sls(3.0), "sls1e4": sls(1e4)}[material], xi, LEVEL
+    )
 
 
 @pytest.mark.parametrize("nu", [0.0, 0.25, 0.49, 0.5])
@@ -311,14 +329,23 @@ def _summary(tmp_path_factory):
     for lo, hi in [(0, 10), (10, 45), (45, 80), (80, 90.01)]:
         mv = [r["matvecs"] for r in converged if lo <= r["max_phase_deg"] < hi]
         if mv:
-            bands[f"{lo}-{min(hi, 90):g} deg"] = {"cases": len(mv), "median_matvecs": float(np.median(mv)),
-                                                   "max_matvecs": int(max(mv))}
-    summary = {"cases": len(RECORDS), "converged": len(converged), "raised": len(raised),
-               "matvecs_by_max_phase": bands,
-               "total_solve_time_s": sum(r["wall_time"] for r in RECORDS),
-               "max_iterations": max((r["iterations"] for r in converged), default=None),
-               "max_matvecs": max((r["matvecs"] for r in converged), default=None),
-               "worst_by_matvecs": worst, "raised_cases": raised, "records": RECORDS}
+            bands[f"{lo}-{min(hi, 90):g} deg"] = {
+                "cases": len(mv),
+                "median_matvecs": float(np.median(mv)),
+                "max_matvecs": int(max(mv)),
+            }
+    summary = {
+        "cases": len(RECORDS),
+        "converged": len(converged),
+        "raised": len(raised),
+        "matvecs_by_max_phase": bands,
+        "total_solve_time_s": sum(r["wall_time"] for r in RECORDS),
+        "max_iterations": max((r["iterations"] for r in converged), default=None),
+        "max_matvecs": max((r["matvecs"] for r in converged), default=None),
+        "worst_by_matvecs": worst,
+        "raised_cases": raised,
+        "records": RECORDS,
+    }
     path.write_text(json.dumps(summary, indent=1, default=float))
     keys = sorted({k for r in RECORDS for k in r})
     with open(path.with_suffix(".csv"), "w", newline="") as f:
@@ -327,8 +354,10 @@ def _summary(tmp_path_factory):
         writer.writerows(RECORDS)
     if UPDATE:
         _write_expected()
-    print(f"\nstress summary: {len(RECORDS)} cases, {len(converged)} converged, {len(raised)} raised; "
-          f"written to {path} and {path.with_suffix('.csv')}")
+    print(
+        f"\nstress summary: {len(RECORDS)} cases, {len(converged)} converged, {len(raised)} raised; "
+        f"written to {path} and {path.with_suffix('.csv')}"
+    )
 
 
 def _write_expected():
@@ -336,17 +365,35 @@ def _write_expected():
     import platform
     import subprocess
 
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                          cwd=Path(__file__).parent).stdout.strip()
-    keep = ("outcome", "iterations", "matvecs", "residual", "contact_fraction", "friction",
-            "friction_independent", "independent_residual", "checks")
+    head = subprocess.run(
+        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=Path(__file__).parent
+    ).stdout.strip()
+    keep = (
+        "outcome",
+        "iterations",
+        "matvecs",
+        "residual",
+        "contact_fraction",
+        "friction",
+        "friction_independent",
+        "independent_residual",
+        "checks",
+    )
     cases = {r["id"]: {k: r[k] for k in keep if k in r} for r in RECORDS if r.get("id")}
     if EXPECTED_PATH.exists():  # a partial run (-k) updates only the cases it ran
         cases = {**json.loads(EXPECTED_PATH.read_text())["cases"], **cases}
-    EXPECTED_PATH.write_text(json.dumps({
-        "note": "Expected outcomes of tests/test_stress.py, made by running `VISCOBEM_STRESS_UPDATE=1 "
+    EXPECTED_PATH.write_text(
+        json.dumps(
+            {
+                "note": "Expected outcomes of tests/test_stress.py, made by running `VISCOBEM_STRESS_UPDATE=1 "
                 f"pytest -m stress` at git {head} ({time.strftime('%Y-%m-%d', time.gmtime())}, Python "
                 f"{platform.python_version()}, numpy {np.__version__}). Each case must end as stored "
                 "(a stored ConvergenceError may now converge) with its checks within the tolerances "
                 "stated in tests/test_stress.py.",
-        "cases": dict(sorted(cases.items()))}, indent=1, default=float) + "\n")
+                "cases": dict(sorted(cases.items())),
+            },
+            indent=1,
+            default=float,
+        )
+        + "\n"
+    )

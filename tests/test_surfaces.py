@@ -3,6 +3,7 @@
 Spectral checks are exact (round-off): the generator gives every mode the deterministic
 amplitude of the target PSD, so the realised PSD is compared with the target itself.
 """
+
 import copy
 import dataclasses
 import pickle
@@ -39,8 +40,11 @@ def _assert_spectrum_equals_target(surface):
 
 # --- generator: exact spectrum -------------------------------------------------------
 
-@pytest.mark.parametrize("n, scales, hurst, rolloff", [
-    (64, 16, 0.8, 1.0), (64, 32, 0.3, 4.0), (63, 31, 0.5, 2.5), (32, 16, 1.0, 1.0), (32, 8, 0.0, 8.0)])
+
+@pytest.mark.parametrize(
+    "n, scales, hurst, rolloff",
+    [(64, 16, 0.8, 1.0), (64, 32, 0.3, 4.0), (63, 31, 0.5, 2.5), (32, 16, 1.0, 1.0), (32, 8, 0.0, 8.0)],
+)
 def test_realised_psd_equals_target_2d(n, scales, hurst, rolloff):
     s = self_affine(n, L, hurst=hurst, scales=scales, rolloff=rolloff, rms_height=1e-6, seed=7)
     c, target = _assert_spectrum_equals_target(s)
@@ -52,8 +56,9 @@ def test_realised_psd_equals_target_2d(n, scales, hurst, rolloff):
     plateau = c[(k > 0.5) & (k <= rolloff)]
     np.testing.assert_allclose(plateau, plateau.max(), rtol=RTOL)
     law = (k >= rolloff) & (k <= scales + 1e-9)
-    np.testing.assert_allclose(c[law] * k[law] ** (2 * (1 + hurst)),
-                               (c[law] * k[law] ** (2 * (1 + hurst))).max(), rtol=RTOL)
+    np.testing.assert_allclose(
+        c[law] * k[law] ** (2 * (1 + hurst)), (c[law] * k[law] ** (2 * (1 + hurst))).max(), rtol=RTOL
+    )
 
 
 def test_nyquist_modes_are_exact_when_cutoff_reaches_them():
@@ -66,8 +71,7 @@ def test_nyquist_modes_are_exact_when_cutoff_reaches_them():
 def test_radial_psd_equals_target_exactly():
     s = self_affine(64, L, hurst=0.8, scales=24, rolloff=3.0, rms_height=1e-6, seed=1)
     q, c = psd(s)
-    np.testing.assert_allclose(c, psd_target(q, **s.metadata["spectrum"]), rtol=RTOL,
-                               atol=RTOL * c.max())
+    np.testing.assert_allclose(c, psd_target(q, **s.metadata["spectrum"]), rtol=RTOL, atol=RTOL * c.max())
     q_l = 2 * np.pi / L
     np.testing.assert_allclose(q[:4] / q_l, [1, np.sqrt(2), 2, np.sqrt(5)], rtol=1e-14)
 
@@ -85,6 +89,7 @@ def test_profile_spectrum_exact_with_1d_exponent():
 
 
 # --- normalisation, Parseval, reality ------------------------------------------------
+
 
 @pytest.mark.parametrize("dim", [1, 2])
 def test_rms_height_and_slope_normalisation_exact(dim):
@@ -137,6 +142,7 @@ def test_cutoff_wavevector_equivalent_to_scales():
 
 # --- anisotropy ----------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("s", [2.0, 0.5, 3.0, 1.3])
 def test_anisotropy_moment_ratio_exact(s):
     surf = self_affine(128, L, hurst=0.8, scales=20, rms_slope=0.1, seed=6, anisotropy=s)
@@ -171,6 +177,7 @@ def test_isotropic_surface_has_equal_moments():
 
 # --- sinusoids -----------------------------------------------------------------------
 
+
 def test_sinusoid_profile():
     s = sinusoid(64, L, amplitude=1e-6, wavelength=L / 4)
     assert s.ndim == 1 and s.heights[0] == 1e-6 and np.argmax(s.heights) == 0
@@ -192,6 +199,7 @@ def test_sinusoid_surface(direction, rms):
 
 # --- Surface and from_heights --------------------------------------------------------
 
+
 def test_from_heights_copies_and_properties():
     raw = np.arange(16.0).reshape(4, 4)
     before = raw.copy()
@@ -210,15 +218,18 @@ def test_from_heights_copies_and_properties():
     assert from_heights([0.0, 1.0], 1.0).coordinates()[0].tolist() == [0.0, 0.5]
 
 
-@pytest.mark.parametrize("heights, length, name", [
-    ([[0.0, 1.0, 2.0], [0.0, 1.0, 2.0]], 1.0, "heights"),
-    ([0.0, np.nan, 1.0], 1.0, "heights"),
-    ([1.0], 1.0, "heights"),
-    (np.zeros((2, 2, 2)), 1.0, "heights"),
-    ([0.0, 1.0], 0.0, "length"),
-    ([0.0, 1.0], -1.0, "length"),
-    ([0.0, 1.0], np.inf, "length"),
-])
+@pytest.mark.parametrize(
+    "heights, length, name",
+    [
+        ([[0.0, 1.0, 2.0], [0.0, 1.0, 2.0]], 1.0, "heights"),
+        ([0.0, np.nan, 1.0], 1.0, "heights"),
+        ([1.0], 1.0, "heights"),
+        (np.zeros((2, 2, 2)), 1.0, "heights"),
+        ([0.0, 1.0], 0.0, "length"),
+        ([0.0, 1.0], -1.0, "length"),
+        ([0.0, 1.0], np.inf, "length"),
+    ],
+)
 def test_surface_rejects_bad_input(heights, length, name):
     with pytest.raises(InputError, match=name):
         from_heights(heights, length)
@@ -240,6 +251,7 @@ def test_surface_pickles_and_metadata_is_read_only():
 
 # --- load ----------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("suffix, delimiter", [(".npy", None), (".txt", " "), (".csv", ","), (".txt", "\t")])
 @pytest.mark.parametrize("shape", [(8,), (8, 8)])
 def test_load_round_trip(tmp_path, suffix, delimiter, shape):
@@ -248,8 +260,7 @@ def test_load_round_trip(tmp_path, suffix, delimiter, shape):
     if suffix == ".npy":
         np.save(path, data)
     else:
-        np.savetxt(path, data[None, :] if data.ndim == 1 else data, delimiter=delimiter,
-                   header="heights", fmt="%.17g")
+        np.savetxt(path, data[None, :] if data.ndim == 1 else data, delimiter=delimiter, header="heights", fmt="%.17g")
     s = load(path, 1e-3)
     np.testing.assert_array_equal(s.heights, data)
     assert s.length == 1e-3 and s.name == "topo" and s.metadata["kind"] == "file"
@@ -263,9 +274,18 @@ def test_load_unit_conversion(tmp_path, unit, factor):
     np.testing.assert_allclose(s.heights, np.array([1.5, -2.0, 0.25, 3.0]) * factor, rtol=1e-15)
 
 
-@pytest.mark.parametrize("content, suffix", [
-    ("1 2 3\n4 5 6\n", ".txt"), ("1,2\n3,nan\n", ".csv"), ("a,b\nc,d\n", ".csv"), ("", ".txt"),
-    ("1,2\n3\n", ".csv"), ("1 2\n3 4\n", ".dat"), ("7\n", ".txt")])
+@pytest.mark.parametrize(
+    "content, suffix",
+    [
+        ("1 2 3\n4 5 6\n", ".txt"),
+        ("1,2\n3,nan\n", ".csv"),
+        ("a,b\nc,d\n", ".csv"),
+        ("", ".txt"),
+        ("1,2\n3\n", ".csv"),
+        ("1 2\n3 4\n", ".dat"),
+        ("7\n", ".txt"),
+    ],
+)
 def test_load_rejects_bad_files(tmp_path, content, suffix):
     path = tmp_path / f"bad{suffix}"
     path.write_text(content)
@@ -288,20 +308,35 @@ def test_load_rejects_missing_file_and_bad_unit(tmp_path):
 GOOD = dict(n=64, length=L, hurst=0.8, scales=16, rms_height=1e-6)
 
 
-@pytest.mark.parametrize("change, name", [
-    (dict(n=1), "n"), (dict(n=64.0), "n"), (dict(length=0.0), "length"), (dict(hurst=1.5), "hurst"),
-    (dict(hurst=np.nan), "hurst"), (dict(scales=33), "scales"), (dict(scales=0), "scales"),
-    (dict(scales=None), "scales"),  # default 64 > n/2
-    (dict(cutoff_wavevector=1e3), "cutoff_wavevector"),
-    (dict(scales=None, cutoff_wavevector=1e6), "cutoff_wavevector"),
-    (dict(scales=None, cutoff_wavevector=1.0), "cutoff_wavevector"),
-    (dict(rolloff=0.5), "rolloff"), (dict(rolloff=17.0), "rolloff"),
-    (dict(rms_slope=0.1), "rms_slope"), (dict(rms_height=None), "rms_height"),
-    (dict(rms_height=-1e-6), "rms_height"), (dict(rms_height=None, rms_slope=0.0), "rms_slope"),
-    (dict(seed=-1), "seed"), (dict(seed=1.5), "seed"), (dict(dim=3), "dim"),
-    (dict(anisotropy=0.0), "anisotropy"), (dict(anisotropy=2.0, dim=1), "anisotropy"),
-    (dict(anisotropy=4.0), "scales"), (dict(anisotropy=0.25), "scales"),
-])
+@pytest.mark.parametrize(
+    "change, name",
+    [
+        (dict(n=1), "n"),
+        (dict(n=64.0), "n"),
+        (dict(length=0.0), "length"),
+        (dict(hurst=1.5), "hurst"),
+        (dict(hurst=np.nan), "hurst"),
+        (dict(scales=33), "scales"),
+        (dict(scales=0), "scales"),
+        (dict(scales=None), "scales"),  # default 64 > n/2
+        (dict(cutoff_wavevector=1e3), "cutoff_wavevector"),
+        (dict(scales=None, cutoff_wavevector=1e6), "cutoff_wavevector"),
+        (dict(scales=None, cutoff_wavevector=1.0), "cutoff_wavevector"),
+        (dict(rolloff=0.5), "rolloff"),
+        (dict(rolloff=17.0), "rolloff"),
+        (dict(rms_slope=0.1), "rms_slope"),
+        (dict(rms_height=None), "rms_height"),
+        (dict(rms_height=-1e-6), "rms_height"),
+        (dict(rms_height=None, rms_slope=0.0), "rms_slope"),
+        (dict(seed=-1), "seed"),
+        (dict(seed=1.5), "seed"),
+        (dict(dim=3), "dim"),
+        (dict(anisotropy=0.0), "anisotropy"),
+        (dict(anisotropy=2.0, dim=1), "anisotropy"),
+        (dict(anisotropy=4.0), "scales"),
+        (dict(anisotropy=0.25), "scales"),
+    ],
+)
 def test_self_affine_rejects_bad_input(change, name):
     kw = {**GOOD, **change}
     n, length = kw.pop("n"), kw.pop("length")
@@ -309,12 +344,19 @@ def test_self_affine_rejects_bad_input(change, name):
         self_affine(n, length, **kw)
 
 
-@pytest.mark.parametrize("change, name", [
-    (dict(amplitude=0.0), "amplitude"), (dict(wavelength=L / 2.5), "wavelength"),
-    (dict(wavelength=2 * L), "wavelength"), (dict(wavelength=L / 8), "wavelength"),
-    (dict(dim=3), "dim"), (dict(dim=2, direction="z"), "direction"), (dict(direction="y"), "direction"),
-    (dict(n=1), "n"),
-])
+@pytest.mark.parametrize(
+    "change, name",
+    [
+        (dict(amplitude=0.0), "amplitude"),
+        (dict(wavelength=L / 2.5), "wavelength"),
+        (dict(wavelength=2 * L), "wavelength"),
+        (dict(wavelength=L / 8), "wavelength"),
+        (dict(dim=3), "dim"),
+        (dict(dim=2, direction="z"), "direction"),
+        (dict(direction="y"), "direction"),
+        (dict(n=1), "n"),
+    ],
+)
 def test_sinusoid_rejects_bad_input(change, name):
     kw = {"n": 16, "length": L, "amplitude": 1e-6, **change}
     with pytest.raises(InputError, match=name):
@@ -341,9 +383,11 @@ def test_statistics_reject_bad_input():
 
 # --- statistics accept arrays and never modify them ----------------------------------
 
+
 @settings(max_examples=30, deadline=None)
-@given(hnp.arrays(np.float64, st_.sampled_from([(6,), (5, 5), (8, 8)]),
-                  elements=st_.floats(-1e3, 1e3, allow_nan=False)))
+@given(
+    hnp.arrays(np.float64, st_.sampled_from([(6,), (5, 5), (8, 8)]), elements=st_.floats(-1e3, 1e3, allow_nan=False))
+)
 def test_statistics_on_arrays_parseval_and_inputs_unmodified(h):
     before = h.copy()
     assert rms_height(h) == pytest.approx(np.std(h), rel=1e-9, abs=1e-9)

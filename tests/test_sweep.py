@@ -1,5 +1,6 @@
 """Sweeps: resume after an interruption, process pool and Dask give the same points,
 ensembles (mean, standard error), only requested stages run, folding, scene checks."""
+
 import json
 
 import numpy as np
@@ -103,10 +104,12 @@ def test_process_pool_gives_the_same_points(tmp_path, reference):
 
 
 def test_dask_local_cluster_gives_the_same_points(tmp_path, reference):
-    distributed = pytest.importorskip("dask.distributed", reason="dask[distributed] is not installed "
-                                      "(pip install '.[dask]')")
-    with distributed.LocalCluster(processes=False, n_workers=1, threads_per_worker=1,
-                                  dashboard_address=None) as cluster:
+    distributed = pytest.importorskip(
+        "dask.distributed", reason="dask[distributed] is not installed (pip install '.[dask]')"
+    )
+    with distributed.LocalCluster(
+        processes=False, n_workers=1, threads_per_worker=1, dashboard_address=None
+    ) as cluster:
         text = BASE.replace("rtol = 1e-9", f'rtol = 1e-9\nscheduler = "{cluster.scheduler_address}"')
         rec = run_scene(scenes.parse(text), tmp_path, progress=False)
     assert rec["solver"]["scheduler"] == cluster.scheduler_address and rec["all_converged"]
@@ -121,8 +124,10 @@ def test_scene_without_anisotropy_does_not_compute_it(tmp_path, monkeypatch):
     def forbidden(*a, **k):
         raise AssertionError("computed although the scene did not ask for it")
 
-    for mod, names in [(anisotropy, ["spectral_moments", "contact_psd", "psd_contour", "relative_moments"]),
-                       (persson, ["friction", "friction_discrete", "friction_for_surface"])]:
+    for mod, names in [
+        (anisotropy, ["spectral_moments", "contact_psd", "psd_contour", "relative_moments"]),
+        (persson, ["friction", "friction_discrete", "friction_for_surface"]),
+    ]:
         for name in names:
             monkeypatch.setattr(mod, name, forbidden)
     rec = run_scene(_scene(), tmp_path, progress=False)
@@ -153,8 +158,7 @@ def test_prony_terms_outside_the_band_are_folded(dim):
     the operator: its symbol is unchanged to ~tol at every speed of the sweep."""
     from bem.periodic import PeriodicHalfSpace
 
-    text = BASE.replace("E_inf = 1.0e7\ncreep_time = 0.01",
-                        "moduli = [1e6, 5e6, 2e6]\ntimes = [1e-12, 3e-3, 1e9]")
+    text = BASE.replace("E_inf = 1.0e7\ncreep_time = 0.01", "moduli = [1e6, 5e6, 2e6]\ntimes = [1e-12, 3e-3, 1e9]")
     text = text.replace("xi = { start = 1e-3, stop = 1e-1, num = 4 }", "speeds = [1e-3, 1e-2, 1e-1, 1.0]")
     text = text.replace("seed = 5", f"seed = 5\ndim = {dim}")
     s = scenes.parse(text)
@@ -170,22 +174,28 @@ def test_prony_terms_outside_the_band_are_folded(dim):
         assert np.max(np.abs(a - b)) <= 1e-5 * np.max(np.abs(a))
 
 
-@pytest.mark.parametrize("old, new, word", [
-    ("realisations = 2", "realisations = 0", "realisations"),
-    ("realisations = 2", "realisations = 2\nworkers = 1", "workers"),
-    ("rtol = 1e-9", "rtol = 1e-9\nworkers = 0", "workers"),
-    ("rtol = 1e-9", "rtol = 1e-9\nscheduler = 3", "scheduler"),
-    ("load = 0.3", "load = [0.3, -1]", "load"),
-    ("[outputs]", "[analysis]\ncontact_level = 1.5\n[outputs]", "contact_level"),
-])
+@pytest.mark.parametrize(
+    "old, new, word",
+    [
+        ("realisations = 2", "realisations = 0", "realisations"),
+        ("realisations = 2", "realisations = 2\nworkers = 1", "workers"),
+        ("rtol = 1e-9", "rtol = 1e-9\nworkers = 0", "workers"),
+        ("rtol = 1e-9", "rtol = 1e-9\nscheduler = 3", "scheduler"),
+        ("load = 0.3", "load = [0.3, -1]", "load"),
+        ("[outputs]", "[analysis]\ncontact_level = 1.5\n[outputs]", "contact_level"),
+    ],
+)
 def test_bad_scene_values_name_the_key(old, new, word):
     with pytest.raises(InputError, match=word):
         _scene(**{old: new})
 
 
 def test_load_list_sweeps_loads(tmp_path):
-    rec = run_scene(_scene(**{"load = 0.3": "load = [0.2, 0.4]", "realisations = 2": "realisations = 1",
-                              "num = 4": "num = 2"}), tmp_path, progress=False)
+    rec = run_scene(
+        _scene(**{"load = 0.3": "load = [0.2, 0.4]", "realisations = 2": "realisations = 1", "num = 4": "num = 2"}),
+        tmp_path,
+        progress=False,
+    )
     assert [c["load"] for c in rec["curves"]] == [0.2, 0.4]
     # more load, more contact at every speed
     assert all(b > a for a, b in zip(rec["curves"][0]["contact_fraction"], rec["curves"][1]["contact_fraction"]))
@@ -196,8 +206,9 @@ def test_material_from_a_dma_table(tmp_path):
     true = bem.Material.from_prony(E0=2e6, moduli=[3e6, 4e6, 1e6], times=[1e-1, 1e-3, 1e-5])
     w = np.logspace(-2, 7, 60)
     e = true.complex_modulus(w)
-    np.savetxt(tmp_path / "dma.csv", np.column_stack([w, e.real, e.imag]), delimiter=",",
-               header="w (rad/s), E' (Pa), E'' (Pa)")
+    np.savetxt(
+        tmp_path / "dma.csv", np.column_stack([w, e.real, e.imag]), delimiter=",", header="w (rad/s), E' (Pa), E'' (Pa)"
+    )
     text = BASE.replace("E0 = 3.3333333333333335e6\nE_inf = 1.0e7\ncreep_time = 0.01", 'dma = "dma.csv"')
     s = scenes.parse(text, base=tmp_path)
     fitted = s.material.complex_modulus(w)
@@ -219,8 +230,16 @@ def test_requested_plots_are_written(tmp_path):
     text = BASE.replace("plots = false", "plots = true\nanisotropy = true\ncontact_psd = true\npersson = true")
     text = text.replace("fields = false", "fields = true")
     rec = run_scene(scenes.parse(text), tmp_path, progress=False)
-    for name in ["friction_curve.png", "contact_area.png", "pressure_map.png", "contact_map.png",
-                 "deformed_surface.png", "polar_m2.png", "contact_psd.png", "anisotropy.png"]:
+    for name in [
+        "friction_curve.png",
+        "contact_area.png",
+        "pressure_map.png",
+        "contact_map.png",
+        "deformed_surface.png",
+        "polar_m2.png",
+        "contact_psd.png",
+        "anisotropy.png",
+    ]:
         assert name in rec["files"] and (tmp_path / name).stat().st_size > 1000, name
 
 
@@ -248,8 +267,9 @@ def test_friction_curve_over_several_loads():
     s = _scene(**{"realisations = 2": "realisations = 1"})
     speeds = s.speeds[:3]
     seen = []
-    curves = bem.friction_curve(s.surface, s.material, speeds=speeds, load=[0.2, 0.4], rtol=1e-9,
-                                callback=lambda k, v, res, msg: seen.append(k))
+    curves = bem.friction_curve(
+        s.surface, s.material, speeds=speeds, load=[0.2, 0.4], rtol=1e-9, callback=lambda k, v, res, msg: seen.append(k)
+    )
     assert [c.load for c in curves] == [0.2, 0.4] and sorted(seen) == list(range(6))
     for c, load in zip(curves, (0.2, 0.4)):
         single = bem.friction_curve(s.surface, s.material, speeds=speeds, load=load, rtol=1e-9)
@@ -272,14 +292,21 @@ def test_killed_sweep_resumes_with_identical_results(tmp_path):
 
     from viscobem_cli.main import main
 
-    text = BASE.replace("n = 32", "n = 64").replace("scales = 8", "scales = 16").replace(
-        "realisations = 2", "realisations = 1").replace("num = 4", "num = 12").replace(
-        "fields = false", "fields = true")
+    text = (
+        BASE.replace("n = 32", "n = 64")
+        .replace("scales = 8", "scales = 16")
+        .replace("realisations = 2", "realisations = 1")
+        .replace("num = 4", "num = 12")
+        .replace("fields = false", "fields = true")
+    )
     path = tmp_path / "s.toml"
     path.write_text(text)
     out = tmp_path / "killed"
-    proc = subprocess.Popen([sys.executable, "-m", "viscobem_cli.main", "run", str(path), "--out", str(out),
-                             "--no-progress"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "viscobem_cli.main", "run", str(path), "--out", str(out), "--no-progress"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
     deadline = time.monotonic() + 120
     while len(list((out / "points").glob("*.json"))) < 3 and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.02)

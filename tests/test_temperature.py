@@ -34,9 +34,7 @@ def test_arrhenius_formula_values_and_sign():
     assert law(300.0) == 0.0
     expected = 100e3 / (GAS_CONSTANT * np.log(10)) * (1 / 330 - 1 / 300)
     assert law(330.0) == pytest.approx(expected, rel=1e-15) and law(330.0) < 0
-    assert np.log(law.shift_factor(280.0)) == pytest.approx(
-        100e3 / GAS_CONSTANT * (1 / 280 - 1 / 300), rel=1e-13
-    )
+    assert np.log(law.shift_factor(280.0)) == pytest.approx(100e3 / GAS_CONSTANT * (1 / 280 - 1 / 300), rel=1e-13)
 
 
 @pytest.mark.parametrize("law", LAWS)
@@ -47,9 +45,7 @@ def test_at_temperature_is_exact_superposition(law, make, T):
     hot = m.at_temperature(T, shift)
     a = 10.0 ** shift(T)
     np.testing.assert_allclose(hot.complex_modulus(W), m.complex_modulus(a * W), rtol=1e-14, atol=0)
-    np.testing.assert_allclose(
-        hot.complex_compliance(W), m.complex_compliance(a * W), rtol=1e-14, atol=0
-    )
+    np.testing.assert_allclose(hot.complex_compliance(W), m.complex_compliance(a * W), rtol=1e-14, atol=0)
     np.testing.assert_allclose(hot.creep_times, a * m.creep_times, rtol=2e-16)
     np.testing.assert_allclose(hot.compliances, m.compliances, rtol=0)
     assert hot.E0 == m.E0 and hot.E_inf == m.E_inf and hot.nu == m.nu
@@ -143,6 +139,4 @@ def test_any_law_and_series_superpose_exactly(c1, c2, dt, log_times):
     hot = m.at_temperature(T, law)
     w = np.logspace(-8, 8, 65)
     np.testing.assert_allclose(hot.complex_modulus(w), m.complex_modulus(a * w), rtol=1e-13, atol=0)
-    np.testing.assert_allclose(
-        hot.complex_compliance(w), m.complex_compliance(a * w), rtol=1e-13, atol=0
-    )
+    np.testing.assert_allclose(hot.complex_compliance(w), m.complex_compliance(a * w), rtol=1e-13, atol=0)

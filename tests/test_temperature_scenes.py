@@ -48,9 +48,7 @@ plots = PLOTS
 def test_scene_reads_the_shift_law_and_temperatures():
     s = scenes.parse(SCENE.replace("PLOTS", "false"))
     assert s.shift == WLF(9.0, 100.0, 300.0) and s.temperatures == (290.0, 300.0, 312.5)
-    assert s.shift(290.0) == pytest.approx(1.0, rel=1e-15) and s.shift(312.5) == pytest.approx(
-        -1.0, rel=1e-15
-    )
+    assert s.shift(290.0) == pytest.approx(1.0, rel=1e-15) and s.shift(312.5) == pytest.approx(-1.0, rel=1e-15)
     arr = scenes.parse(
         SCENE.replace("PLOTS", "false").replace(
             'law = "wlf", C1 = 9.0, C2 = 100.0', 'law = "arrhenius", activation_energy = 1.5e5'
@@ -82,10 +80,7 @@ def test_friction_obeys_time_temperature_superposition(tmp_path, capsys):
     assert rec["friction_curve_temperature"] == 300.0 and rec["all_converged"]
     from viscobem_cli.main import main
 
-    assert (
-        main(["run", str(tmp_path.parent / "scene.toml"), "--out", str(tmp_path), "--no-progress"])
-        == 0
-    )
+    assert main(["run", str(tmp_path.parent / "scene.toml"), "--out", str(tmp_path), "--no-progress"]) == 0
     printed = capsys.readouterr().out
     assert "290.00    300.00    312.50" in printed and "resumed: 9 finished point(s)" in printed
 
@@ -123,9 +118,7 @@ def test_a_dma_table_with_temperatures_gives_a_master_curve_and_its_law(tmp_path
     m, law = _write_sweeps(tmp_path / "sweeps.csv")
     s = scenes.parse(DMA_SCENE.replace("PLOTS", "true"), base=tmp_path)
     assert isinstance(s.shift, WLF) and s.shift.reference_temperature == 296.15
-    assert s.shift.C1 == pytest.approx(8.86, rel=5e-3) and s.shift.C2 == pytest.approx(
-        101.6, rel=5e-3
-    )
+    assert s.shift.C1 == pytest.approx(8.86, rel=5e-3) and s.shift.C2 == pytest.approx(101.6, rel=5e-3)
     w = np.logspace(-1, 7, 50)
     np.testing.assert_allclose(s.material.complex_modulus(w), m.complex_modulus(w), rtol=1e-2)
     assert s.dma["T"].min() == pytest.approx(266.15) and s.dma["e1"].max() > 1e7  # units applied
@@ -138,18 +131,9 @@ def test_a_dma_table_with_temperatures_gives_a_master_curve_and_its_law(tmp_path
 @pytest.mark.parametrize(
     "replace, words",
     [
-        (
-            ("temperatures = [290.0, 300.0, 312.5]", "temperatures = [290.0, -3.0]"),
-            ["temperatures", "> 0 K"],
-        ),
-        (
-            ("temperatures = [290.0, 300.0, 312.5]", "temperatures = [150.0]"),
-            ["reference_temperature - C2", "200"],
-        ),
-        (
-            ('shift = { law = "wlf", C1 = 9.0, C2 = 100.0, reference_temperature = 300.0 }\n', ""),
-            ["shift law"],
-        ),
+        (("temperatures = [290.0, 300.0, 312.5]", "temperatures = [290.0, -3.0]"), ["temperatures", "> 0 K"]),
+        (("temperatures = [290.0, 300.0, 312.5]", "temperatures = [150.0]"), ["reference_temperature - C2", "200"]),
+        (('shift = { law = "wlf", C1 = 9.0, C2 = 100.0, reference_temperature = 300.0 }\n', ""), ["shift law"]),
         (('law = "wlf", C1 = 9.0', 'law = "vft", C1 = 9.0'), ["shift", "wlf", "arrhenius"]),
         (("C2 = 100.0,", "C2 = 100.0, Tg = 200.0,"), ["'Tg'", "valid keys"]),
         (("C1 = 9.0, ", ""), ["C1", "required"]),
@@ -170,21 +154,12 @@ def test_bad_dma_units_and_missing_reference_are_named(tmp_path):
     with pytest.raises(InputError, match="dma_modulus_unit must be one of"):
         scenes.parse(text.replace('"MPa"', '"psi"'), base=tmp_path)
     with pytest.raises(InputError, match="dma_temperature_unit"):
-        scenes.parse(
-            text.replace('dma_temperature_unit = "C"', 'dma_temperature_unit = "F"'), base=tmp_path
-        )
+        scenes.parse(text.replace('dma_temperature_unit = "C"', 'dma_temperature_unit = "F"'), base=tmp_path)
     with pytest.raises(InputError, match="reference_temperature"):
-        scenes.parse(
-            text.replace('law = "wlf", reference_temperature = 296.15', 'law = "wlf"'),
-            base=tmp_path,
-        )
+        scenes.parse(text.replace('law = "wlf", reference_temperature = 296.15', 'law = "wlf"'), base=tmp_path)
 
 
 def test_built_in_temperature_scene_parses():
     s = scenes.load("temperature")
-    assert (
-        len(s.temperatures) == 5
-        and isinstance(s.shift, WLF)
-        and s.shift.reference_temperature == 296.15
-    )
+    assert len(s.temperatures) == 5 and isinstance(s.shift, WLF) and s.shift.reference_temperature == 296.15
     assert s.material.E_inf / s.material.E0 == pytest.approx(200, rel=1e-3) and s.speeds.size == 9

@@ -1,6 +1,7 @@
 """One thread setting (bem.set_threads / bem.use_threads) that every FFT and pool honours:
 bem.fft, the isolated operator, the contact-map periodogram of bem.anisotropy, the line
 preconditioner's thread pool (tests/test_line_preconditioner.py) and the sweep's process pool."""
+
 import multiprocessing as mp
 from concurrent.futures import ProcessPoolExecutor
 
@@ -27,6 +28,7 @@ def fft_workers(monkeypatch):
         def spy(*args, _original=original, **kwargs):
             seen.append(kwargs.get("workers"))
             return _original(*args, **kwargs)
+
         monkeypatch.setattr(scipy.fft, name, spy)
     return seen
 

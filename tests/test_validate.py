@@ -5,6 +5,7 @@ The default tests run the cheap periodic cases (and one rolling-cylinder speed o
 grid, for the FEM .vtu files) through the CLI in-process; the whole quick set against the
 stored baselines is ``pytest -m slow`` (about two minutes).
 """
+
 import json
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -67,8 +68,14 @@ def test_measure_sees_memory_held_during_the_call():
     import sys
 
     root = Path(__file__).resolve().parent.parent
-    out = subprocess.run([sys.executable, "-c", _MEASURE], capture_output=True, text=True, check=True,
-                         cwd=root, env={"PYTHONPATH": str(root), "PATH": "/usr/bin:/bin"}).stdout.split()
+    out = subprocess.run(
+        [sys.executable, "-c", _MEASURE],
+        capture_output=True,
+        text=True,
+        check=True,
+        cwd=root,
+        env={"PYTHONPATH": str(root), "PATH": "/usr/bin:/bin"},
+    ).stdout.split()
     value, seconds, peak, array = (float(v) for v in out)
     assert value == 6_000_000 and seconds >= 0.15
     assert 0.95 * array <= peak <= 2 * array
@@ -150,8 +157,19 @@ def test_fem_vtu_and_pvd_of_a_rolling_sweep(tmp_path, monkeypatch):
 
     cfg = dict(cylinder.QUICK_SLS[3], s=[0.3], cells=10, resolution=2)
     monkeypatch.setitem(cylinder.QUICK_SLS, 3, cfg)
-    main(["validate", "--quick", "--no-progress", "--no-baseline", "--no-plots", "--case", "cylinder_sls_r3",
-          "--out", str(tmp_path)])
+    main(
+        [
+            "validate",
+            "--quick",
+            "--no-progress",
+            "--no-baseline",
+            "--no-plots",
+            "--case",
+            "cylinder_sls_r3",
+            "--out",
+            str(tmp_path),
+        ]
+    )
     record = json.loads((tmp_path / "report.json").read_text())
     case = record["cases"]["cylinder_sls_r3"]
     assert case["status"] in ("passed", "failed")  # coarser than the quick set: plumbing only
@@ -217,8 +235,9 @@ def test_fem_self_checks_catch_a_broken_energy_balance_and_contact():
     fem_self_checks(out, "x", good, 0.01, "why")
     assert all(c.passed for c in out.checks) and len(out.checks) == 3
     out = CaseOutput()
-    fem_self_checks(out, "x", dict(good, power_fields=1.06, contact_residual=10 * CONTACT_TOL,
-                                   linear_residual=1e-6), 0.01, "why")
+    fem_self_checks(
+        out, "x", dict(good, power_fields=1.06, contact_residual=10 * CONTACT_TOL, linear_residual=1e-6), 0.01, "why"
+    )
     assert [c.passed for c in out.checks] == [False, False, False]
 
 
@@ -240,8 +259,21 @@ def test_sensitivity_table_and_exit_status(tmp_path, monkeypatch, capsys):
     """--sensitivity reruns the cases with wrong inputs: every entry names the checks that caught it,
     the HTML shows the table, and a perturbation no check catches (a tolerance made useless) fails
     the run."""
-    argv = ["validate", "--quick", "--no-progress", "--no-vtk", "--no-plots", "--no-baseline", "--sensitivity",
-            "--case", "westergaard", "--case", "elastic_rough_dense", "--out", str(tmp_path / "a")]
+    argv = [
+        "validate",
+        "--quick",
+        "--no-progress",
+        "--no-vtk",
+        "--no-plots",
+        "--no-baseline",
+        "--sensitivity",
+        "--case",
+        "westergaard",
+        "--case",
+        "elastic_rough_dense",
+        "--out",
+        str(tmp_path / "a"),
+    ]
     assert main(argv) == 0
     record = json.loads((tmp_path / "a" / "report.json").read_text())
     entries = record["sensitivity"]
@@ -271,8 +303,7 @@ def test_perturbations_change_only_what_they_name():
     np.testing.assert_array_equal(up.relaxation_times, m.relaxation_times)
     e0 = by_name["E0 -2%"].material(m)
     assert e0.E0 == pytest.approx(0.98 * m.E0) and e0.E_inf == pytest.approx(m.E_inf)
-    np.testing.assert_allclose(by_name["relaxation times +5%"].material(m).relaxation_times,
-                               1.05 * m.relaxation_times)
+    np.testing.assert_allclose(by_name["relaxation times +5%"].material(m).relaxation_times, 1.05 * m.relaxation_times)
     t = Tamper(by_name["speed +5%"])
     assert t.inputs("a", m, 0.0, 1.0) == (m, 0.0, 1.0) and t.changed == set()
     assert t.inputs("b", m, 2.0, 1.0)[1] == pytest.approx(2.1) and t.changed == {"b"}
@@ -292,8 +323,22 @@ def test_a_crashing_case_is_reported_and_the_others_still_run(tmp_path, monkeypa
         raise RuntimeError("solver exploded")
 
     monkeypatch.setitem(CASES, "westergaard", Case("westergaard", "t", "d", ("exact",), "exact", boom))
-    status = main(["validate", "--quick", "--no-baseline", "--no-progress", "--no-vtk", "--no-plots",
-                   "--case", "westergaard", "--case", "elastic_rough_dense", "--out", str(tmp_path)])
+    status = main(
+        [
+            "validate",
+            "--quick",
+            "--no-baseline",
+            "--no-progress",
+            "--no-vtk",
+            "--no-plots",
+            "--case",
+            "westergaard",
+            "--case",
+            "elastic_rough_dense",
+            "--out",
+            str(tmp_path),
+        ]
+    )
     assert status == 1 and "RuntimeError: solver exploded" in capsys.readouterr().out
     record = json.loads((tmp_path / "report.json").read_text())
     assert record["cases"]["westergaard"]["status"] == "error"
@@ -305,7 +350,9 @@ def test_baselines_round_trip(cheap_run, tmp_path):
     _, _, record = cheap_run
     path = baselines.write(record, tmp_path / "b.json", command="test")
     stored = json.loads(path.read_text())
-    assert stored["provenance"]["commit"] == record["environment"]["commit"] and stored["provenance"]["command"] == "test"
+    assert (
+        stored["provenance"]["commit"] == record["environment"]["commit"] and stored["provenance"]["command"] == "test"
+    )
     assert baselines.compare(record, path)["ok"]
 
 
@@ -319,8 +366,21 @@ def test_missed_tolerance_and_changed_baseline_exit_non_zero_with_a_summary(tmp_
     path.write_text(json.dumps(stored))
     tight = dict(periodic.QUICK_WEST, tol=dict(periodic.QUICK_WEST["tol"], l2=1e-9))
     monkeypatch.setattr(periodic, "QUICK_WEST", tight)
-    status = main(["validate", "--quick", "--no-progress", "--no-vtk", "--no-plots", "--case", "westergaard",
-                   "--baseline", str(path), "--out", str(tmp_path / "o")])
+    status = main(
+        [
+            "validate",
+            "--quick",
+            "--no-progress",
+            "--no-vtk",
+            "--no-plots",
+            "--case",
+            "westergaard",
+            "--baseline",
+            str(path),
+            "--out",
+            str(tmp_path / "o"),
+        ]
+    )
     text = capsys.readouterr().out
     assert status == 1
     assert "FAIL westergaard: bem-periodic pressure_rel_l2" in text
@@ -352,8 +412,11 @@ def test_rubber_fem_against_bem():
     out = CASES["rubber"](quick=False)
     failed = [c.key for c in out.checks if not c.passed]
     assert not failed, failed
-    assert {c.solver for c in out.checks} >= {"fem vs bem-reference", "bem-periodic vs bem-reference",
-                                               "bem-isolated-adaptive vs bem-reference"}
+    assert {c.solver for c in out.checks} >= {
+        "fem vs bem-reference",
+        "bem-periodic vs bem-reference",
+        "bem-isolated-adaptive vs bem-reference",
+    }
 
 
 SCENE = """

@@ -5,13 +5,14 @@ contact condition under the plane-strain symbol ``2 / (E* |q|)``), then used as 
 of the elastic solver. In full contact the steady-sliding problem is linear and its exact
 solution is the Fourier one, ``p = p_mean + A^-1 (h - mean h)``, for any material and speed.
 """
+
 import numpy as np
 import pytest
+from conftest import make_prony30, make_seed
 from scipy import integrate
 
 import bem
 from bem import surfaces
-from conftest import make_prony30, make_seed
 from validation.westergaard import westergaard
 
 E, NU, LAM, G0 = 1e7, 0.3, 1e-3, 1e-5  # nu != 0.5 so that the 1 - nu**2 factor is exercised
@@ -23,8 +24,7 @@ P_STAR = np.pi * E_STAR * G0 / LAM
 @pytest.mark.parametrize("frac", [0.1, 0.5, 0.9, 1.5])
 def test_westergaard_mean_pressure_is_the_load(frac):
     sol = westergaard(G0, LAM, frac * P_STAR, E, NU)
-    mean, _ = integrate.quad(sol.pressure, -LAM / 2, LAM / 2, points=[-sol.half_width, sol.half_width],
-                             limit=200)
+    mean, _ = integrate.quad(sol.pressure, -LAM / 2, LAM / 2, points=[-sol.half_width, sol.half_width], limit=200)
     # quad on a smooth integrand (sqrt edges are endpoints): round-off level
     assert mean / LAM == pytest.approx(sol.mean_pressure, rel=1e-12)
     assert sol.full_contact == (frac >= 1)
@@ -179,8 +179,7 @@ def test_ridges_in_2d_are_the_plane_strain_profile(xi):
     p_mean = 0.3 * np.pi * m.E0 / (1 - m.nu**2) * G0 / LAM
     one = bem.solve(profile, m, speed=xi * LAM / 0.01, load=p_mean * LAM, rtol=1e-12)
     two = bem.solve(ridges, m, speed=xi * LAM / 0.01, load=p_mean * LAM**2, rtol=1e-12)
-    np.testing.assert_allclose(two.pressure, one.pressure[:, None] * np.ones(n), rtol=0,
-                               atol=1e-9 * one.pressure.max())
+    np.testing.assert_allclose(two.pressure, one.pressure[:, None] * np.ones(n), rtol=0, atol=1e-9 * one.pressure.max())
     assert two.friction == pytest.approx(one.friction, rel=1e-9, abs=1e-15)
     assert two.approach == pytest.approx(one.approach, rel=1e-9)
 

@@ -5,7 +5,7 @@ the plane-strain surface displacement with piecewise-constant pressure on a unif
 and a textbook active-set loop for the unilateral contact under load control. It is slow
 (dense ``O(N^3)``) and first-order accurate, and meant only for tests.
 
-Conventions as in :mod:`validation.hunter` (SPEC §2.2): the cylinder moves in ``+x``,
+Conventions as in :mod:`validation.hunter` (docs/theory.md §3): the cylinder moves in ``+x``,
 material flows in ``-x``, displacement ``u`` is positive into the solid, and
 
     u(x) = (1/E_inf) w(x) + sum_k C_k * integral_0^inf exp(-z) w(x + V lambda_k z) dz,
@@ -14,6 +14,7 @@ with ``w`` the displacement of a half-space of unit Young's modulus,
 ``w(x) = -(2 (1 - nu**2) / pi) * integral p(s) ln|x - s| ds`` (plus a constant that the
 rigid approach absorbs).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -53,7 +54,7 @@ def _phi_creep(t, shift):
 
 def strip_kernel(offsets, width, material, speed):
     """Displacement (m) at ``offsets`` (m) from the centre of a strip of ``width`` (m)
-    carrying unit pressure (1 Pa), for the steady viscoelastic half-space of SPEC §2.2."""
+    carrying unit pressure (1 Pa), for the steady viscoelastic half-space of docs/theory.md §3."""
     y = np.asarray(offsets, dtype=float)
     c = -2.0 * (1.0 - material.nu**2) / np.pi
     out = c * (_phi(y + width / 2) - _phi(y - width / 2)) / material.E_inf
@@ -75,7 +76,7 @@ def solve_line_contact(material, *, radius, load, speed, x_min, x_max, n, maxite
     kern = strip_kernel(dx * np.arange(-(n - 1), n), dx, material, speed)
     idx = np.arange(n)
     K = kern[(idx[:, None] - idx[None, :]) + n - 1]  # K[i, j]: at x_i due to cell j
-    h = -x**2 / (2 * radius)
+    h = -(x**2) / (2 * radius)
     active = np.abs(x) < 0.5 * np.sqrt(4 * load * radius * (1 - material.nu**2) / (np.pi * material.E_inf))
     for _ in range(maxiter):
         s = np.flatnonzero(active)

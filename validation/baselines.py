@@ -13,6 +13,7 @@ reruns reproduce the errors to ~1e-6 of themselves across BLAS builds; a 5 % cha
 discretisation error, or of a round-off-level one by more than 1 % of its tolerance, means the
 numerics changed.
 """
+
 from __future__ import annotations
 
 import json
@@ -23,30 +24,47 @@ __all__ = ["DEFAULT", "compare", "write", "REL", "FLOOR"]
 
 DEFAULT = Path(__file__).resolve().parent / "baselines" / "quick.json"
 REL, FLOOR, ABS = 0.05, 0.01, 1e-12
-RULE = ("|value - baseline| <= max(rel * |baseline|, floor_of_tolerance * tolerance) (abs for unjudged checks); "
-        "regenerate: viscobem validate --quick --update-baselines --out DIR")
+RULE = (
+    "|value - baseline| <= max(rel * |baseline|, floor_of_tolerance * tolerance) (abs for unjudged checks); "
+    "regenerate: viscobem validate --quick --update-baselines --out DIR"
+)
 
 
 def _values(record):
-    return {name: {f"{k['solver']}/{k['metric']}/{k['label']}": k["value"] for k in c["checks"]}
-            for name, c in record["cases"].items()}
+    return {
+        name: {f"{k['solver']}/{k['metric']}/{k['label']}": k["value"] for k in c["checks"]}
+        for name, c in record["cases"].items()
+    }
 
 
-NOTE = ("made by `viscobem validate --quick --update-baselines` once every case passed its tolerances; the values "
-        "are discretisation errors of deterministic solves (direct FEM factorisations, BEM at rtol <= 1e-10), so the "
-        "machine, its load and the FEM's linear solver (SuperLU or PARDISO) change them only at round-off (the "
-        "linear solve's residual, <= 1e-7 of the contact gap)")
+NOTE = (
+    "made by `viscobem validate --quick --update-baselines` once every case passed its tolerances; the values "
+    "are discretisation errors of deterministic solves (direct FEM factorisations, BEM at rtol <= 1e-10), so the "
+    "machine, its load and the FEM's linear solver (SuperLU or PARDISO) change them only at round-off (the "
+    "linear solve's residual, <= 1e-7 of the contact gap)"
+)
 
 
 def write(record, path=DEFAULT, command=""):
     """Store ``record``'s check values with provenance and :data:`NOTE`; returns the path."""
     env = record["environment"]
-    data = dict(provenance=dict(note=NOTE, commit=env["commit"], dirty=env.get("dirty", False), date=env["date"],
-                                machine=env["machine"], python=env["python"], numpy=env["numpy"],
-                                scipy=env["scipy"], command=command, seconds=record["seconds"],
-                                case_seconds={n: c["seconds"] for n, c in record["cases"].items()}),
-                comparison=dict(rel=REL, floor_of_tolerance=FLOOR, abs=ABS, rule=RULE),
-                values=_values(record))
+    data = dict(
+        provenance=dict(
+            note=NOTE,
+            commit=env["commit"],
+            dirty=env.get("dirty", False),
+            date=env["date"],
+            machine=env["machine"],
+            python=env["python"],
+            numpy=env["numpy"],
+            scipy=env["scipy"],
+            command=command,
+            seconds=record["seconds"],
+            case_seconds={n: c["seconds"] for n, c in record["cases"].items()},
+        ),
+        comparison=dict(rel=REL, floor_of_tolerance=FLOOR, abs=ABS, rule=RULE),
+        values=_values(record),
+    )
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
@@ -72,5 +90,10 @@ def compare(record, path=DEFAULT):
             allowed = max(REL * abs(b), FLOOR * tol if tol is not None else ABS)
             if not (math.isfinite(v) and abs(v - b) <= allowed):
                 regressions.append(dict(case=name, key=key, value=v, baseline=b, allowed=allowed))
-    return dict(ok=not regressions and not missing, regressions=regressions, missing=missing, path=str(path),
-                provenance=stored["provenance"])
+    return dict(
+        ok=not regressions and not missing,
+        regressions=regressions,
+        missing=missing,
+        path=str(path),
+        provenance=stored["provenance"],
+    )

@@ -4,6 +4,7 @@ SI units. ``E`` is Young's modulus of the half-space, ``nu`` its Poisson ratio; 
 indenter enters through the reduced modulus ``E* = E / (1 - nu**2)``. Reference:
 K.L. Johnson, *Contact Mechanics*, CUP 1985, §4.2 (sphere) and §5.2 (cylinder).
 """
+
 from dataclasses import dataclass
 
 import numpy as np

@@ -3,7 +3,7 @@
 Frictionless, steady, plane strain (S.C. Hunter, J. Appl. Mech. 28 (1961) 611-617,
 doi:10.1115/1.3641792). SI units: m, N/m, Pa, s.
 
-Conventions (SPEC §2.2), stated once here: the cylinder moves with speed ``V`` in ``+x``
+Conventions (docs/theory.md §3), stated once here: the cylinder moves with speed ``V`` in ``+x``
 (material flows in ``-x`` in its frame); ``x`` is measured from the cylinder's axis, whose
 profile is ``h(x) = -x**2 / (2 R)``; the contact is ``[trailing_edge, leading_edge]`` with
 the leading edge at ``+x``; displacement ``u`` is positive into the solid and
@@ -42,6 +42,7 @@ creep time); ``V -> inf`` gives Hertz with ``E_inf``. ``N`` and ``Z`` are evalua
 Gauss-Legendre quadrature in variables that resolve their corners and decay scales (``N``
 agrees with nested adaptive quadrature to 1e-14 for ``kappa`` in [1e-3, 1e6]).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
@@ -135,8 +136,9 @@ def _z(t, kap):
     steps = steps[steps < np.pi]
     near0 = 2.0 ** np.arange(30) / (4 * np.sqrt(kap + 1))
     near0 = near0[near0 < np.pi]
-    edges = np.concatenate([np.broadcast_to(np.r_[0.0, np.pi, near0], (t.size, near0.size + 2)),
-                            f0 - steps, f0 + steps], axis=1)
+    edges = np.concatenate(
+        [np.broadcast_to(np.r_[0.0, np.pi, near0], (t.size, near0.size + 2)), f0 - steps, f0 + steps], axis=1
+    )
     edges = np.sort(np.clip(edges, 0.0, np.pi), axis=1)
     lo, hi = edges[:, :-1, None], edges[:, 1:, None]
     f = 0.5 * (hi - lo) * (_X12 + 1) + lo
@@ -203,8 +205,12 @@ def _peak(sol):
     p = sol.pressure(x)
     i = int(np.argmax(p))
     lo, hi = x[max(i - 1, 0)], x[min(i + 1, x.size - 1)]
-    res = optimize.minimize_scalar(lambda s: -sol.pressure(np.array([s]))[0], bounds=(lo, hi),
-                                   method="bounded", options={"xatol": 1e-12 * sol.half_width})
+    res = optimize.minimize_scalar(
+        lambda s: -sol.pressure(np.array([s]))[0],
+        bounds=(lo, hi),
+        method="bounded",
+        options={"xatol": 1e-12 * sol.half_width},
+    )
     return (-res.fun, res.x) if -res.fun >= p[i] else (p[i], x[i])
 
 
@@ -253,26 +259,46 @@ def rolling_cylinder(material, *, radius, load, speed):
     if not isinstance(material, Material):
         raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
     if material.moduli.size > 1:
-        raise InputError(f"material must be elastic or a one-term standard linear solid, got "
-                         f"{material.moduli.size} Prony terms")
+        raise InputError(
+            f"material must be elastic or a one-term standard linear solid, got {material.moduli.size} Prony terms"
+        )
     radius = check_positive("radius", radius)
     load = check_positive("load", load)
     speed = check_positive("speed", speed, allow_zero=True)
     e0s = material.E0 / material.plane_strain_factor
     if material.is_elastic or speed == 0:
         hz = line_contact(material.E0, material.nu, radius, load)
-        return HunterSolution(hz.a, -hz.a, hz.a, 0.0, 0.0, hz.p0, 0.0, load, radius, speed,
-                              e0s * hz.a / (2 * radius), 0.0, 0.0)
+        return HunterSolution(
+            hz.a, -hz.a, hz.a, 0.0, 0.0, hz.p0, 0.0, load, radius, speed, e0s * hz.a / (2 * radius), 0.0, 0.0
+        )
     r = material.E0 / material.E_inf
     lc = speed * material.creep_times[0]
     a0 = line_contact(material.E0, material.nu, radius, load).a
     # P(h) rises from <= load at the glassy Hertz width to >= load at the relaxed one
-    lh = optimize.brentq(lambda q: np.log(_state(np.exp(q), e0s, r, lc, radius)[1] / load),
-                         np.log(a0 * np.sqrt(r)) - 1e-9, np.log(a0) + 1e-9, xtol=1e-15, rtol=1e-15)
+    lh = optimize.brentq(
+        lambda q: np.log(_state(np.exp(q), e0s, r, lc, radius)[1] / load),
+        np.log(a0 * np.sqrt(r)) - 1e-9,
+        np.log(a0) + 1e-9,
+        xtol=1e-15,
+        rtol=1e-15,
+    )
     h = float(np.exp(lh))
     m, _, mu_extra, z_scale, kap = (float(v) for v in _state(h, e0s, r, lc, radius))
-    sol = HunterSolution(m + h, m - h, h, m, m / radius + mu_extra / load, np.nan, np.nan,
-                         load, radius, speed, e0s * h / (2 * radius), z_scale, kap)
+    sol = HunterSolution(
+        m + h,
+        m - h,
+        h,
+        m,
+        m / radius + mu_extra / load,
+        np.nan,
+        np.nan,
+        load,
+        radius,
+        speed,
+        e0s * h / (2 * radius),
+        z_scale,
+        kap,
+    )
     pk, xk = _peak(sol)
     return replace(sol, peak_pressure=float(pk), peak_position=float(xk))
 

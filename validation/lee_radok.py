@@ -11,6 +11,7 @@ doi:10.1115/1.3644020) give
 with ``J`` the creep compliance and ``E`` the relaxation modulus (Pa); at ``t = 0+`` and
 ``t -> inf`` the pressure is Hertz's with ``E_inf`` and ``E0``. SI units throughout.
 """
+
 from __future__ import annotations
 
 import numpy as np

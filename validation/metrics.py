@@ -15,6 +15,7 @@ Pressures are compared *honestly* across discretisations (documented once, here)
 Relative errors are dimensionless; edge errors are in units of the solver's own sample
 spacing (element or cell size), so "within one element" reads as ``<= 1``.
 """
+
 from __future__ import annotations
 
 import os
@@ -25,8 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["rel_l2", "rel_max", "rel_diff", "bin_average", "sampled_edges", "edge_error",
-           "Cost", "measure"]
+__all__ = ["rel_l2", "rel_max", "rel_diff", "bin_average", "sampled_edges", "edge_error", "Cost", "measure"]
 
 
 def _trapz(y, x):

@@ -6,18 +6,28 @@ series ``1 / E(w)``, sharing no code with :mod:`bem` (neither :mod:`bem.fft`,
 :mod:`bem.periodic` nor the creep series the solver uses), so that agreement with the BEM
 checks its FFT layout, Nyquist handling, Prony/creep interconversion and contact solver.
 
-Conventions as in SPEC §2.2: ``u_q = 2 (1 - nu^2) / |q| / E(-q_x v) p_q`` for ``q != 0``;
+Conventions as in docs/theory.md §3: ``u_q = 2 (1 - nu^2) / |q| / E(-q_x v) p_q`` for ``q != 0``;
 heights positive toward the solid, sliding in ``+x`` (axis 0). The symbol is made
 Hermitian, ``a_q -> (a_q + conj(a_-q)) / 2`` with ``-q`` taken on the grid: this changes only
-the x-Nyquist modes of even grids, whose symbol becomes its real part (SPEC §7), and makes
+the x-Nyquist modes of even grids, whose symbol becomes its real part (docs/theory.md §12), and makes
 ``1 / a_q`` the exact inverse of the real operator.
 """
+
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["wavevectors", "symbol", "displacement", "full_contact_pressure", "x_derivative", "full_contact",
-           "influence_matrix", "murty_lcp", "dense_contact"]
+__all__ = [
+    "wavevectors",
+    "symbol",
+    "displacement",
+    "full_contact_pressure",
+    "x_derivative",
+    "full_contact",
+    "influence_matrix",
+    "murty_lcp",
+    "dense_contact",
+]
 
 
 def wavevectors(shape, length):
@@ -53,7 +63,7 @@ def full_contact_pressure(heights, a):
 
 
 def x_derivative(field, length):
-    """Spectral derivative along x (axis 0) of a periodic field (SPEC §7: never differences);
+    """Spectral derivative along x (axis 0) of a periodic field (docs/theory.md §12: never differences);
     the x-Nyquist mode of an even grid, whose derivative has no defined sign, is dropped."""
     qx = wavevectors(field.shape, length)[0]
     if field.shape[0] % 2 == 0:

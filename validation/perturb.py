@@ -8,6 +8,7 @@ keep the true inputs. The tamper records which solvers it actually changed: a pe
 that leaves a solver's inputs as they were (the speed of a solve at rest, the relaxation
 times of an elastic solid) does not change its physics and need not be caught.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -44,15 +45,17 @@ class Perturbation:
             return Material.elastic(m.E0 * self.E_inf * self.E0, m.nu)
         E0, E_inf = m.E0 * self.E0, m.E_inf * self.E_inf
         moduli = np.asarray(m.moduli) * (E_inf - E0) / (m.E_inf - m.E0)
-        return Material.from_prony(E0=E0, moduli=moduli, times=np.asarray(m.relaxation_times) * self.times,
-                                   nu=m.nu)
+        return Material.from_prony(E0=E0, moduli=moduli, times=np.asarray(m.relaxation_times) * self.times, nu=m.nu)
 
 
 NONE = Perturbation("none")
 PERTURBATIONS = (
-    Perturbation("E_inf +2%", E_inf=1.02), Perturbation("E_inf -2%", E_inf=0.98),
-    Perturbation("E0 +2%", E0=1.02), Perturbation("E0 -2%", E0=0.98),
-    Perturbation("relaxation times +5%", times=1.05), Perturbation("speed +5%", speed=1.05),
+    Perturbation("E_inf +2%", E_inf=1.02),
+    Perturbation("E_inf -2%", E_inf=0.98),
+    Perturbation("E0 +2%", E0=1.02),
+    Perturbation("E0 -2%", E0=0.98),
+    Perturbation("relaxation times +5%", times=1.05),
+    Perturbation("speed +5%", speed=1.05),
     Perturbation("load +2%", load=1.02),
 )
 

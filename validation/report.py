@@ -1,6 +1,7 @@
 """Validation reports: ``report.json`` (every number), ``report.md`` (a quick look) and a
 self-contained ``report.html`` (summary table, then per case the pressure overlays, error
 plots, sweeps from each solver and timings; PNG plots embedded as base64)."""
+
 from __future__ import annotations
 
 import base64
@@ -54,15 +55,26 @@ def _worst(case):
 
 def write_markdown(record, path, baseline=None):
     env, s = record["environment"], record["summary"]
-    lines = [f"# viscobem validation ({'quick' if record['quick'] else 'full'} set)", "",
-             f"Commit `{env['commit'][:12]}`{' (dirty)' if env.get('dirty') else ''}, {env['date']}, {env['machine']}, "
-             f"Python {env['python']}; {record['seconds']:.1f} s in total.", "",
-             f"**{s['passed']} of {s['cases']} cases passed** ({s['checks']} checks"
-             f"{', failing: ' + ', '.join(s['failed']) if s['failed'] else ''}).", ""]
+    lines = [
+        f"# viscobem validation ({'quick' if record['quick'] else 'full'} set)",
+        "",
+        f"Commit `{env['commit'][:12]}`{' (dirty)' if env.get('dirty') else ''}, {env['date']}, {env['machine']}, "
+        f"Python {env['python']}; {record['seconds']:.1f} s in total.",
+        "",
+        f"**{s['passed']} of {s['cases']} cases passed** ({s['checks']} checks"
+        f"{', failing: ' + ', '.join(s['failed']) if s['failed'] else ''}).",
+        "",
+    ]
     if baseline is not None:
-        lines += [f"Baseline comparison ({baseline['path']}): "
-                  + ("all values within tolerance." if baseline["ok"] else
-                     f"**{len(baseline['regressions'])} regressions**, {len(baseline['missing'])} missing values."), ""]
+        lines += [
+            f"Baseline comparison ({baseline['path']}): "
+            + (
+                "all values within tolerance."
+                if baseline["ok"]
+                else f"**{len(baseline['regressions'])} regressions**, {len(baseline['missing'])} missing values."
+            ),
+            "",
+        ]
     lines += ["| case | status | time (s) | solvers |", "|---|---|---|---|"]
     for name, c in record["cases"].items():
         lines.append(f"| `{name}` | {_status(c)} | {c['seconds']:.1f} | {', '.join(c['solvers'])} |")
@@ -71,11 +83,17 @@ def write_markdown(record, path, baseline=None):
         if c["status"] == "error":
             lines += [f"**Error:** `{c['error']}`", ""]
             continue
-        lines += ["Worst value of each metric over the points (tolerance and why):", "",
-                  "| solver | metric | at | value | tolerance | status | why |", "|---|---|---|---|---|---|---|"]
+        lines += [
+            "Worst value of each metric over the points (tolerance and why):",
+            "",
+            "| solver | metric | at | value | tolerance | status | why |",
+            "|---|---|---|---|---|---|---|",
+        ]
         for k in _worst(c):
-            lines.append(f"| {k['solver']} | {k['metric']} | {k['label']} | {_fmt(k['value'])} | {_fmt(k['tolerance'])} "
-                         f"| {_check_status(k)} | {k['why']} |")
+            lines.append(
+                f"| {k['solver']} | {k['metric']} | {k['label']} | {_fmt(k['value'])} | {_fmt(k['tolerance'])} "
+                f"| {_check_status(k)} | {k['why']} |"
+            )
         lines += ["", "| solver | point | time (s) | peak memory (MiB) | detail |", "|---|---|---|---|---|"]
         for r in c["runs"]:
             lines.append(f"| {r['solver']} | {r['label']} | {r['seconds']:.3g} | {r['peak_mib']:.3g} | {r['detail']} |")
@@ -103,8 +121,13 @@ def sensitivity_markdown(record):
     perts, rows = _sensitivity_rows(record)
     if not rows:
         return []
-    lines = ["", "## Sensitivity: deliberately wrong inputs", "",
-             "| case | solver | " + " | ".join(perts) + " |", "|---|---|" + "---|" * len(perts)]
+    lines = [
+        "",
+        "## Sensitivity: deliberately wrong inputs",
+        "",
+        "| case | solver | " + " | ".join(perts) + " |",
+        "|---|---|" + "---|" * len(perts),
+    ]
     for (case, solver), cells in rows.items():
         lines.append(f"| `{case}` | {solver} | " + " | ".join(cells.get(p, ("-", ""))[0] for p in perts) + " |")
     return lines
@@ -115,13 +138,14 @@ def sensitivity_html(record):
     if not rows:
         return []
     e = html.escape
-    parts = ["<h2 id='sensitivity'>Sensitivity: deliberately wrong inputs</h2><p>Each case rerun with the "
-             "solvers under test given one wrong input (references keep the true one). A cell names the checks "
-             "that failed; MISSED means the wrong input passed every check.</p><table><tr><th>case</th>"
-             "<th>solver</th>" + "".join(f"<th>{e(p)}</th>" for p in perts) + "</tr>"]
+    parts = [
+        "<h2 id='sensitivity'>Sensitivity: deliberately wrong inputs</h2><p>Each case rerun with the "
+        "solvers under test given one wrong input (references keep the true one). A cell names the checks "
+        "that failed; MISSED means the wrong input passed every check.</p><table><tr><th>case</th>"
+        "<th>solver</th>" + "".join(f"<th>{e(p)}</th>" for p in perts) + "</tr>"
+    ]
     for (case, solver), cells in rows.items():
-        tds = "".join(f"<td class='{cells[p][1]}'>{e(cells[p][0])}</td>" if p in cells else "<td>-</td>"
-                      for p in perts)
+        tds = "".join(f"<td class='{cells[p][1]}'>{e(cells[p][0])}</td>" if p in cells else "<td>-</td>" for p in perts)
         parts.append(f"<tr><td>{e(case)}</td><td>{e(solver)}</td>{tds}</tr>")
     parts.append("</table>")
     return parts
@@ -147,8 +171,14 @@ def plots(case):
         ax.legend(fontsize=8)
         ax.set_title(prof["label"], fontsize=9)
         for name, (x, e) in prof["errors"].items():
-            ae.plot(np.asarray(x) * 1e3, np.asarray(e) / 1e6, marker=".", ms=3, lw=0.8,
-                    label=f"{name} - {prof['reference']}")
+            ae.plot(
+                np.asarray(x) * 1e3,
+                np.asarray(e) / 1e6,
+                marker=".",
+                ms=3,
+                lw=0.8,
+                label=f"{name} - {prof['reference']}",
+            )
         ae.axhline(0, color="k", lw=0.5)
         ae.set_ylabel("pressure error (MPa)")
         ae.set_xlabel(prof["xlabel"].replace("(m)", "(mm)"))
@@ -190,9 +220,11 @@ def plots(case):
     return out
 
 
-_CSS = ("body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}table{border-collapse:collapse;"
-        "margin:0.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.PASS{background:#d4f4d4}"
-        ".FAIL,.ERROR{background:#f8c8c8}.info{background:#eee}img{max-width:100%}")
+_CSS = (
+    "body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}table{border-collapse:collapse;"
+    "margin:0.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.PASS{background:#d4f4d4}"
+    ".FAIL,.ERROR{background:#f8c8c8}.info{background:#eee}img{max-width:100%}"
+)
 
 
 def write_html(record, path, baseline=None, figures=None, with_plots=True):
@@ -200,53 +232,77 @@ def write_html(record, path, baseline=None, figures=None, with_plots=True):
     ``with_plots`` is false: then the report holds the tables only)."""
     e = html.escape
     env, s = record["environment"], record["summary"]
-    parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>viscobem validation</title>"
-             f"<style>{_CSS}</style></head><body>",
-             f"<h1>viscobem validation ({'quick' if record['quick'] else 'full'} set)</h1>",
-             f"<p>Commit <code>{e(env['commit'][:12])}</code>, {e(env['date'])}, {e(env['machine'])}; "
-             f"{record['seconds']:.1f} s. <b>{s['passed']} of {s['cases']} cases passed</b>, {s['checks']} checks.</p>"]
+    parts = [
+        f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>viscobem validation</title>"
+        f"<style>{_CSS}</style></head><body>",
+        f"<h1>viscobem validation ({'quick' if record['quick'] else 'full'} set)</h1>",
+        f"<p>Commit <code>{e(env['commit'][:12])}</code>, {e(env['date'])}, {e(env['machine'])}; "
+        f"{record['seconds']:.1f} s. <b>{s['passed']} of {s['cases']} cases passed</b>, {s['checks']} checks.</p>",
+    ]
     if baseline is not None:
-        parts.append(f"<p>Baselines ({e(str(baseline['path']))}): "
-                     + ("all within tolerance" if baseline["ok"] else
-                        f"<b class='FAIL'>{len(baseline['regressions'])} regressions</b>") + "</p>")
-    parts.append("<h2>Summary</h2><table><tr><th>case</th><th>solver</th><th>metric</th><th>worst at</th>"
-                 "<th>value</th><th>tolerance</th><th>status</th></tr>")
+        parts.append(
+            f"<p>Baselines ({e(str(baseline['path']))}): "
+            + (
+                "all within tolerance"
+                if baseline["ok"]
+                else f"<b class='FAIL'>{len(baseline['regressions'])} regressions</b>"
+            )
+            + "</p>"
+        )
+    parts.append(
+        "<h2>Summary</h2><table><tr><th>case</th><th>solver</th><th>metric</th><th>worst at</th>"
+        "<th>value</th><th>tolerance</th><th>status</th></tr>"
+    )
     for name, c in record["cases"].items():
         if c["status"] == "error":
             parts.append(f"<tr><td>{e(name)}</td><td colspan=5>{e(c['error'])}</td><td class='ERROR'>ERROR</td></tr>")
         for k in _worst(c):
             st = _check_status(k)
-            parts.append(f"<tr><td><a href='#{e(name)}'>{e(name)}</a></td><td>{e(k['solver'])}</td><td>{e(k['metric'])}"
-                         f"</td><td>{e(k['label'])}</td><td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td>"
-                         f"<td class='{st}'>{st}</td></tr>")
+            parts.append(
+                f"<tr><td><a href='#{e(name)}'>{e(name)}</a></td><td>{e(k['solver'])}</td><td>{e(k['metric'])}"
+                f"</td><td>{e(k['label'])}</td><td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td>"
+                f"<td class='{st}'>{st}</td></tr>"
+            )
     parts.append("</table>")
     parts += sensitivity_html(record)
     for name, c in record["cases"].items():
-        parts.append(f"<h2 id='{e(name)}'>{e(name)}: {e(c['title'])} <span class='{_status(c)}'>{_status(c)}</span></h2>"
-                     f"<p>{e(c['description'])}</p>")
+        parts.append(
+            f"<h2 id='{e(name)}'>{e(name)}: {e(c['title'])} <span class='{_status(c)}'>{_status(c)}</span></h2>"
+            f"<p>{e(c['description'])}</p>"
+        )
         if c["status"] == "error":
             parts.append(f"<pre>{e(c['traceback'])}</pre>")
             continue
-        parts.append("<details><summary>all checks</summary><table><tr><th>solver</th><th>metric</th><th>at</th>"
-                     "<th>value</th><th>tolerance</th><th>status</th><th>why</th></tr>")
+        parts.append(
+            "<details><summary>all checks</summary><table><tr><th>solver</th><th>metric</th><th>at</th>"
+            "<th>value</th><th>tolerance</th><th>status</th><th>why</th></tr>"
+        )
         for k in c["checks"]:
             st = _check_status(k)
-            parts.append(f"<tr><td>{e(k['solver'])}</td><td>{e(k['metric'])}</td><td>{e(k['label'])}</td>"
-                         f"<td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td><td class='{st}'>{st}</td>"
-                         f"<td>{e(k['why'])}</td></tr>")
+            parts.append(
+                f"<tr><td>{e(k['solver'])}</td><td>{e(k['metric'])}</td><td>{e(k['label'])}</td>"
+                f"<td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td><td class='{st}'>{st}</td>"
+                f"<td>{e(k['why'])}</td></tr>"
+            )
         parts.append("</table></details>")
         figs = figures[name] if figures is not None else (plots(c) if with_plots else [])
         for title, png in figs:
-            parts.append(f"<figure><img alt='{e(title)}' src='data:image/png;base64,"
-                         f"{base64.b64encode(png).decode()}'/></figure>")
+            parts.append(
+                f"<figure><img alt='{e(title)}' src='data:image/png;base64,{base64.b64encode(png).decode()}'/></figure>"
+            )
         parts.append("<table><tr><th>solver</th><th>point</th><th>time (s)</th><th>peak MiB</th><th>detail</th></tr>")
         for r in c["runs"]:
-            parts.append(f"<tr><td>{e(r['solver'])}</td><td>{e(r['label'])}</td><td>{r['seconds']:.3g}</td>"
-                         f"<td>{r['peak_mib']:.3g}</td><td>{e(r['detail'])}</td></tr>")
+            parts.append(
+                f"<tr><td>{e(r['solver'])}</td><td>{e(r['label'])}</td><td>{r['seconds']:.3g}</td>"
+                f"<td>{r['peak_mib']:.3g}</td><td>{e(r['detail'])}</td></tr>"
+            )
         parts.append("</table>")
         if c["files"]:
-            parts.append("<p>VTK (open the .pvd files in ParaView): " + ", ".join(
-                f"<code>{e(f)}</code>" for f in c["files"] if f.endswith(".pvd")) + "</p>")
+            parts.append(
+                "<p>VTK (open the .pvd files in ParaView): "
+                + ", ".join(f"<code>{e(f)}</code>" for f in c["files"] if f.endswith(".pvd"))
+                + "</p>"
+            )
     parts.append("</body></html>")
     Path(path).write_text("\n".join(parts))
 

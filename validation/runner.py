@@ -6,6 +6,7 @@ tolerance, passed, why), ``runs`` (seconds, peak MiB per solver call), ``files``
 ``failed`` / ``error``) and ``seconds``; ``summary`` counts them; ``environment`` says
 where and from which commit the numbers came.
 """
+
 from __future__ import annotations
 
 import datetime
@@ -30,15 +31,32 @@ def environment():
 
     try:
         root = Path(__file__).resolve().parent.parent
-        commit = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True,
-                                timeout=10).stdout.strip() or "unknown"
-        dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
-                               capture_output=True, text=True, timeout=10).stdout.strip() != ""
+        commit = (
+            subprocess.run(
+                ["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True, timeout=10
+            ).stdout.strip()
+            or "unknown"
+        )
+        dirty = (
+            subprocess.run(
+                ["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
+                capture_output=True,
+                text=True,
+                timeout=10,
+            ).stdout.strip()
+            != ""
+        )
     except (OSError, subprocess.SubprocessError):
         commit, dirty = "unknown", False
-    return dict(commit=commit, dirty=dirty, date=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-                machine=f"{platform.node()} {platform.machine()} {platform.processor() or ''}".strip(),
-                python=platform.python_version(), numpy=np.__version__, scipy=scipy.__version__)
+    return dict(
+        commit=commit,
+        dirty=dirty,
+        date=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        machine=f"{platform.node()} {platform.machine()} {platform.processor() or ''}".strip(),
+        python=platform.python_version(),
+        numpy=np.__version__,
+        scipy=scipy.__version__,
+    )
 
 
 def select(names):
@@ -70,15 +88,35 @@ def _case_record(case, out, seconds):
     checks = [c.as_dict() for c in out.checks]
     failed = [c for c in checks if not c["passed"]]
     return dict(
-        title=case.title, description=case.description, solvers=list(case.solvers), reference=case.reference,
-        status="failed" if failed else "passed", seconds=seconds, checks=checks,
-        runs=[dict(solver=r.solver, label=r.label, seconds=r.seconds, peak_mib=r.peak_mib, detail=r.detail)
-              for r in out.runs],
-        files=list(out.files), notes=list(out.notes), numbers=_arrays(out.numbers),
-        profiles=[dict(label=p.label, reference=p.reference, xlabel=p.xlabel, curves=_arrays(p.curves),
-                       errors=_arrays(p.errors)) for p in out.profiles],
-        sweeps=[dict(title=s.title, xlabel=s.xlabel, ylabel=s.ylabel, logx=s.logx, logy=s.logy,
-                     curves=_arrays(s.curves)) for s in out.sweeps])
+        title=case.title,
+        description=case.description,
+        solvers=list(case.solvers),
+        reference=case.reference,
+        status="failed" if failed else "passed",
+        seconds=seconds,
+        checks=checks,
+        runs=[
+            dict(solver=r.solver, label=r.label, seconds=r.seconds, peak_mib=r.peak_mib, detail=r.detail)
+            for r in out.runs
+        ],
+        files=list(out.files),
+        notes=list(out.notes),
+        numbers=_arrays(out.numbers),
+        profiles=[
+            dict(
+                label=p.label,
+                reference=p.reference,
+                xlabel=p.xlabel,
+                curves=_arrays(p.curves),
+                errors=_arrays(p.errors),
+            )
+            for p in out.profiles
+        ],
+        sweeps=[
+            dict(title=s.title, xlabel=s.xlabel, ylabel=s.ylabel, logx=s.logx, logy=s.logy, curves=_arrays(s.curves))
+            for s in out.sweeps
+        ],
+    )
 
 
 def run_cases(names, *, quick, out_dir, vtk=True, progress=True):
@@ -98,17 +136,32 @@ def run_cases(names, *, quick, out_dir, vtk=True, progress=True):
             out = case(quick=quick, vtk_dir=(out_dir / "vtk" / name) if vtk else None, root=out_dir)
         except Exception as err:  # a crashing case is a failed case; the others still run
             log.error("case %s raised %s", name, err)
-            record["cases"][name] = dict(title=case.title, description=case.description, solvers=list(case.solvers),
-                                         reference=case.reference, status="error", seconds=time.perf_counter() - t0,
-                                         error=f"{type(err).__name__}: {err}", traceback=traceback.format_exc(),
-                                         checks=[], runs=[], files=[], notes=[], numbers={}, profiles=[], sweeps=[])
+            record["cases"][name] = dict(
+                title=case.title,
+                description=case.description,
+                solvers=list(case.solvers),
+                reference=case.reference,
+                status="error",
+                seconds=time.perf_counter() - t0,
+                error=f"{type(err).__name__}: {err}",
+                traceback=traceback.format_exc(),
+                checks=[],
+                runs=[],
+                files=[],
+                notes=[],
+                numbers={},
+                profiles=[],
+                sweeps=[],
+            )
             continue
         record["cases"][name] = _case_record(case, out, time.perf_counter() - t0)
     record["seconds"] = time.perf_counter() - t_all
     cases = record["cases"].values()
     record["summary"] = dict(
-        cases=len(record["cases"]), passed=sum(c["status"] == "passed" for c in cases),
+        cases=len(record["cases"]),
+        passed=sum(c["status"] == "passed" for c in cases),
         failed=[n for n, c in record["cases"].items() if c["status"] != "passed"],
         checks=sum(len(c["checks"]) for c in cases),
-        failed_checks=[dict(case=n, **k) for n, c in record["cases"].items() for k in c["checks"] if not k["passed"]])
+        failed_checks=[dict(case=n, **k) for n, c in record["cases"].items() for k in c["checks"] if not k["passed"]],
+    )
     return record

@@ -11,6 +11,7 @@ undetected one means a tolerance too loose for the discretisation error it guard
 Entries: ``{case, solver, perturbation, detected, by, required}``; a case that raises under a
 perturbation counts as detected by ``error``.
 """
+
 from __future__ import annotations
 
 import logging
@@ -41,8 +42,16 @@ def _case_entries(name, quick, progress):
         except Exception as err:  # noqa: BLE001 -- a solver that breaks on a wrong input has been caught
             log.info("case %s raised under %s: %s", name, pert.name, err)
             for solver in sorted(tamper.changed):
-                entries.append(dict(case=name, solver=solver, perturbation=pert.name, detected=True,
-                                    by=[f"error: {type(err).__name__}"], required=True))
+                entries.append(
+                    dict(
+                        case=name,
+                        solver=solver,
+                        perturbation=pert.name,
+                        detected=True,
+                        by=[f"error: {type(err).__name__}"],
+                        required=True,
+                    )
+                )
             continue
         by = {}
         for c in res.checks:
@@ -50,8 +59,16 @@ def _case_entries(name, quick, progress):
                 by.setdefault(_owner(c.solver), set()).add(c.metric)
         for solver in _solvers_under_test(res, tamper):
             found = sorted(by.get(solver, ()))
-            entries.append(dict(case=name, solver=solver, perturbation=pert.name, detected=bool(found), by=found,
-                                required=solver in tamper.changed))
+            entries.append(
+                dict(
+                    case=name,
+                    solver=solver,
+                    perturbation=pert.name,
+                    detected=bool(found),
+                    by=found,
+                    required=solver in tamper.changed,
+                )
+            )
         if progress:
             log.info("sensitivity %s %s: %s", name, pert.name, {s: sorted(v) for s, v in by.items()})
     return entries, sorted(failing_base)

@@ -7,27 +7,39 @@ Every .vti holds point data ``heights``, ``pressure`` (Pa), ``displacement`` (m,
 and ``relaxation_times`` (s, one entry per term), ``creep_times`` (s) and
 ``dimensionless_speed`` (``xi = V max(lambda_k) / L``, ``L`` the cell side), plus ``units``.
 """
+
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-UNITS = ("SI units: lengths, heights, displacements and gaps m, pressure Pa, speed m/s, load N on a 2-D cell "
-         "or N/m on a 1-D profile, times s; heights positive toward the solid, displacement positive into it; "
-         "the indenter moves in +x")
+UNITS = (
+    "SI units: lengths, heights, displacements and gaps m, pressure Pa, speed m/s, load N on a 2-D cell "
+    "or N/m on a 1-D profile, times s; heights positive toward the solid, displacement positive into it; "
+    "the indenter moves in +x"
+)
 
 
 def metadata(surface, result, material=None):
     """Field data of one BEM solution (see module docstring)."""
     import numpy as np
 
-    meta = dict(speed=[float(result.speed)], load=[float(result.load)], friction=[float(result.friction)],
-                approach=[float(result.approach)], cell_length=[float(surface.length)])
+    meta = dict(
+        speed=[float(result.speed)],
+        load=[float(result.load)],
+        friction=[float(result.friction)],
+        approach=[float(result.approach)],
+        cell_length=[float(surface.length)],
+    )
     if material is not None:
         lam = float(np.max(material.creep_times)) if material.creep_times.size else 0.0
-        meta.update(E0=[float(material.E0)], E_inf=[float(material.E_inf)], nu=[float(material.nu)],
-                    prony_moduli=np.asarray(material.moduli, float),
-                    relaxation_times=np.asarray(material.relaxation_times, float),
-                    creep_times=np.asarray(material.creep_times, float),
-                    dimensionless_speed=[float(result.speed) * lam / float(surface.length)])
+        meta.update(
+            E0=[float(material.E0)],
+            E_inf=[float(material.E_inf)],
+            nu=[float(material.nu)],
+            prony_moduli=np.asarray(material.moduli, float),
+            relaxation_times=np.asarray(material.relaxation_times, float),
+            creep_times=np.asarray(material.creep_times, float),
+            dimensionless_speed=[float(result.speed) * lam / float(surface.length)],
+        )
     meta["units"] = [UNITS]
     return meta
 
@@ -61,10 +73,12 @@ def surface_grid(surface, result, origin=(0.0, 0.0), material=None):
 def write_pvd(path, datasets):
     """Write a ParaView collection ``path`` (.pvd) of ``datasets = [(file, time_value), ...]``
     (file names relative to the .pvd's folder); ParaView opens them as one time series."""
-    entries = [f'  <DataSet timestep={quoteattr(repr(float(t)))} file={quoteattr(str(name))}/>'
-               for name, t in datasets]
-    Path(path).write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
-                          + "\n".join(entries) + "\n</Collection>\n</VTKFile>\n")
+    entries = [f"  <DataSet timestep={quoteattr(repr(float(t)))} file={quoteattr(str(name))}/>" for name, t in datasets]
+    Path(path).write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
+        + "\n".join(entries)
+        + "\n</Collection>\n</VTKFile>\n"
+    )
 
 
 def write_sweep(folder, surface, results, xi, material=None):

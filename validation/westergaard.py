@@ -19,6 +19,7 @@ References: H.M. Westergaard, "Bearing pressures and cracks", J. Appl. Mech. 6 (
 A49–A53, doi:10.1115/1.4008919; K.L. Johnson, *Contact Mechanics*, CUP 1985, §13.2
 (eqs. 13.3 and 13.9–13.10).
 """
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -109,5 +110,6 @@ def westergaard(amplitude, wavelength, mean_pressure, E, nu=0.5):
         a = 0.5 * wavelength
     else:
         a = wavelength / np.pi * np.arcsin(np.sqrt(mean_pressure / p_star))
-    return WestergaardSolution(float(amplitude), float(wavelength), float(e_star), float(mean_pressure),
-                               float(p_star), float(a))
+    return WestergaardSolution(
+        float(amplitude), float(wavelength), float(e_star), float(mean_pressure), float(p_star), float(a)
+    )

@@ -3,12 +3,13 @@
 Every measured case runs in a fresh interpreter (``multiprocessing`` with the ``spawn``
 context), so its peak resident set size is its own and not the high-water mark of an
 earlier case. Thread counts are fixed through the environment before the child imports
-numpy (SPEC §7: on 2 shared cores a multi-threaded BLAS on small vector operations can be
+numpy (docs/theory.md §12: on 2 shared cores a multi-threaded BLAS on small vector operations can be
 1000x slower); FFTs keep using all cores (:func:`bem.parallel.get_threads`).
 
 Memory is read from the kernel: ``getrusage(RUSAGE_SELF).ru_maxrss`` (peak, KiB on Linux,
 bytes on macOS) and ``/proc/self/statm`` (current, Linux only).
 """
+
 import contextlib
 import hashlib
 import multiprocessing
@@ -21,11 +22,27 @@ import sys
 import time
 from pathlib import Path
 
-__all__ = ["THREAD_VARIABLES", "thread_environment", "run_in_fresh_process", "peak_rss",
-           "current_rss", "median_time", "fft_pair_time", "load_average", "source_snapshot", "source_digest"]
+__all__ = [
+    "THREAD_VARIABLES",
+    "thread_environment",
+    "run_in_fresh_process",
+    "peak_rss",
+    "current_rss",
+    "median_time",
+    "fft_pair_time",
+    "load_average",
+    "source_snapshot",
+    "source_digest",
+]
 
-THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
-                    "BLIS_NUM_THREADS", "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")
+THREAD_VARIABLES = (
+    "OMP_NUM_THREADS",
+    "OPENBLAS_NUM_THREADS",
+    "MKL_NUM_THREADS",
+    "BLIS_NUM_THREADS",
+    "VECLIB_MAXIMUM_THREADS",
+    "NUMEXPR_NUM_THREADS",
+)
 
 
 def thread_environment(blas_threads=1, omp_threads=None):
@@ -101,7 +118,9 @@ def fft_pair_time(shape, **kwargs):
     from bem.parallel import get_threads
 
     x = np.random.default_rng(0).standard_normal(shape)
-    return median_time(lambda: sfft.irfftn(sfft.rfftn(x, workers=get_threads()), s=shape, workers=get_threads()), **kwargs)
+    return median_time(
+        lambda: sfft.irfftn(sfft.rfftn(x, workers=get_threads()), s=shape, workers=get_threads()), **kwargs
+    )
 
 
 def load_average():
@@ -134,10 +153,17 @@ def source_snapshot(package, directory):
     shutil.copytree(src, dst, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
     info = {"package": src.name, "source": str(src), "sha256": source_digest(dst)}
     try:
-        info["git_head"] = subprocess.run(["git", "rev-parse", "HEAD"], cwd=src, capture_output=True,
-                                          text=True, timeout=10).stdout.strip() or None
-        info["git_dirty"] = bool(subprocess.run(["git", "status", "--porcelain", "--", "."], cwd=src,
-                                                capture_output=True, text=True, timeout=10).stdout.strip())
+        info["git_head"] = (
+            subprocess.run(
+                ["git", "rev-parse", "HEAD"], cwd=src, capture_output=True, text=True, timeout=10
+            ).stdout.strip()
+            or None
+        )
+        info["git_dirty"] = bool(
+            subprocess.run(
+                ["git", "status", "--porcelain", "--", "."], cwd=src, capture_output=True, text=True, timeout=10
+            ).stdout.strip()
+        )
     except (OSError, subprocess.SubprocessError):
         info["git_head"] = info["git_dirty"] = None
     sys.path.insert(0, str(directory))

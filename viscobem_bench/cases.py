@@ -16,6 +16,7 @@ entries, against Hunter's exact rolling cylinder, are written this way)::
         for n in (64, 128) if quick else (64, 128, 256, 512):
             yield {"n": n}
 """
+
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -28,7 +29,6 @@ L = 0.01  # m: the cell of every periodic case (tamaas worker of viscobem_bench.
 E_ELASTIC = 1e7  # Pa
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
 RTOL_REF = 1e-12
-
 
 
 # ---------------------------------------------------------------- registry
@@ -57,10 +57,21 @@ REGISTRY = {}
 
 def register(name, *, solver, problem, reference, error, knobs, measure, env=None):
     """Decorator adding a :class:`SolverBenchmark` whose group generator it decorates."""
+
     def wrap(groups):
-        REGISTRY[name] = SolverBenchmark(name, solver, problem, reference, error, tuple(knobs), groups,
-                                         measure, env or _measure.thread_environment(1))
+        REGISTRY[name] = SolverBenchmark(
+            name,
+            solver,
+            problem,
+            reference,
+            error,
+            tuple(knobs),
+            groups,
+            measure,
+            env or _measure.thread_environment(1),
+        )
         return groups
+
     return wrap
 
 
@@ -86,16 +97,31 @@ def _westergaard_group(group, quick):
     for rtol in RTOLS:
         res, t = timed(lambda rtol=rtol: bem.solve(surface, m, speed=0.0, load=exact.mean_pressure * L**2, rtol=rtol))
         err = float(np.linalg.norm(res.pressure - p_exact) / np.linalg.norm(p_exact))
-        points.append({"n": n, "rtol": rtol, "error": err, "time": t, "peak_rss": _measure.peak_rss(),
-                       "iterations": res.iterations, "matvecs": res.matvecs,
-                       "contact_fraction": res.contact_fraction,
-                       "tolerance_error": float(np.linalg.norm(res.pressure - tight) / np.linalg.norm(tight))})
+        points.append(
+            {
+                "n": n,
+                "rtol": rtol,
+                "error": err,
+                "time": t,
+                "peak_rss": _measure.peak_rss(),
+                "iterations": res.iterations,
+                "matvecs": res.matvecs,
+                "contact_fraction": res.contact_fraction,
+                "tolerance_error": float(np.linalg.norm(res.pressure - tight) / np.linalg.norm(tight)),
+            }
+        )
     return points
 
 
-@register("periodic-westergaard", solver="periodic BEM", measure=_westergaard_group,
-          problem="2-D cell, rigid sinusoid (ridges along y) on an elastic half-space, p = p*/2",
-          reference="Westergaard (exact)", error="rel. L2 pressure error at the nodes", knobs=("n", "rtol"))
+@register(
+    "periodic-westergaard",
+    solver="periodic BEM",
+    measure=_westergaard_group,
+    problem="2-D cell, rigid sinusoid (ridges along y) on an elastic half-space, p = p*/2",
+    reference="Westergaard (exact)",
+    error="rel. L2 pressure error at the nodes",
+    knobs=("n", "rtol"),
+)
 def _westergaard(quick):
     for n in (64, 128, 256, 512) if quick else (64, 128, 256, 512, 1024):
         yield {"n": n}
@@ -118,7 +144,7 @@ def rough_heights(n):
     hq, half = fft.forward(h), BASE_N // 2  # Nyquist row and column are zero (16 < 32 scales)
     big = np.zeros((n, n // 2 + 1), dtype=complex)
     big[:half, : half + 1] = hq[:half, : half + 1]
-    big[n - half:, : half + 1] = hq[half:, : half + 1]
+    big[n - half :, : half + 1] = hq[half:, : half + 1]
     return fft.inverse(big, (n, n))
 
 
@@ -144,20 +170,39 @@ def _rough_group(group, quick):
     points = []
     for rtol in group["rtols"]:
         res, t = timed(lambda rtol=rtol: bem.solve(surface, m, speed=speed, load=rough_load(m), rtol=rtol))
-        points.append({"n": group["n"], "rtol": rtol, "friction": res.friction, "time": t,
-                       "peak_rss": _measure.peak_rss(), "iterations": res.iterations, "matvecs": res.matvecs,
-                       "contact_fraction": res.contact_fraction, "pressure": res.pressure})
+        points.append(
+            {
+                "n": group["n"],
+                "rtol": rtol,
+                "friction": res.friction,
+                "time": t,
+                "peak_rss": _measure.peak_rss(),
+                "iterations": res.iterations,
+                "matvecs": res.matvecs,
+                "contact_fraction": res.contact_fraction,
+                "pressure": res.pressure,
+            }
+        )
     # the tolerance's own share of the error: pressure against the same grid at rtol 1e-12
-    tight = points[-1]["pressure"] if group["rtols"][-1] == RTOL_REF else \
-        bem.solve(surface, m, speed=speed, load=rough_load(m), rtol=RTOL_REF).pressure
+    tight = (
+        points[-1]["pressure"]
+        if group["rtols"][-1] == RTOL_REF
+        else bem.solve(surface, m, speed=speed, load=rough_load(m), rtol=RTOL_REF).pressure
+    )
     for p in points:
         p["tolerance_error"] = float(np.linalg.norm(p.pop("pressure") - tight) / np.linalg.norm(tight))
     return points
 
 
-@register("periodic-rough-viscoelastic", solver="periodic BEM", measure=_rough_group,
-          problem="self-affine surface (H 0.8, 16 scales, rms slope 0.1), seed SLS at xi = 1e-2, ~10 % contact",
-          reference="converged: finest grid at rtol 1e-12", error="rel. friction error", knobs=("n", "rtol"))
+@register(
+    "periodic-rough-viscoelastic",
+    solver="periodic BEM",
+    measure=_rough_group,
+    problem="self-affine surface (H 0.8, 16 scales, rms slope 0.1), seed SLS at xi = 1e-2, ~10 % contact",
+    reference="converged: finest grid at rtol 1e-12",
+    error="rel. friction error",
+    knobs=("n", "rtol"),
+)
 # (each point also carries ``tolerance_error``: rel. L2 pressure error against rtol 1e-12 on its own grid)
 def _rough(quick):
     sizes = (64, 128, 256) if quick else (64, 128, 256, 512)
@@ -183,14 +228,29 @@ def _fem_group(group, quick):
     from viscobem_bench.fem import _rolling_case, _sls
 
     r = _rolling_case(_sls(), 1.0, group["resolution"], group["domain"])
-    return [{"resolution": group["resolution"], "domain": group["domain"], "error": abs(r["friction_error"]),
-             "peak_pressure_error": abs(r["peak_pressure_error"]), "time": r["wall_s"],
-             "peak_rss": _measure.peak_rss(), "unknowns": r["unknowns"]}]
+    return [
+        {
+            "resolution": group["resolution"],
+            "domain": group["domain"],
+            "error": abs(r["friction_error"]),
+            "peak_pressure_error": abs(r["peak_pressure_error"]),
+            "time": r["wall_s"],
+            "peak_rss": _measure.peak_rss(),
+            "unknowns": r["unknowns"],
+        }
+    ]
 
 
-@register("fem-hunter", solver="FEM (scikit-fem)", measure=_fem_group, env=_measure.thread_environment(2),
-          problem="rigid cylinder rolling on an SLS (E_inf/E0 = 3), V lambda = a0, P = 100 N/m, R = 10 mm",
-          reference="Hunter (exact)", error="rel. friction error", knobs=("resolution", "domain"))
+@register(
+    "fem-hunter",
+    solver="FEM (scikit-fem)",
+    measure=_fem_group,
+    env=_measure.thread_environment(2),
+    problem="rigid cylinder rolling on an SLS (E_inf/E0 = 3), V lambda = a0, P = 100 N/m, R = 10 mm",
+    reference="Hunter (exact)",
+    error="rel. friction error",
+    knobs=("resolution", "domain"),
+)
 def _fem(quick):
     for res in (2, 3, 4) if quick else (2, 3, 4, 6, 8):
         yield {"resolution": res, "domain": 30}
@@ -205,7 +265,9 @@ def _hunter_reference(factor):
     from viscobem_bench.isolated import LOADS, RADIUS, _a0, _material
 
     m = _material()
-    exact = rolling_cylinder(m, radius=RADIUS, load=LOADS["cylinder"], speed=factor * _a0("cylinder", m) / m.creep_times[0])
+    exact = rolling_cylinder(
+        m, radius=RADIUS, load=LOADS["cylinder"], speed=factor * _a0("cylinder", m) / m.creep_times[0]
+    )
     return exact.friction, exact.peak_pressure
 
 
@@ -215,27 +277,47 @@ def _isolated_group(group, quick):
     mu, peak = _hunter_reference(group["factor"])
     row = _case("cylinder", group["factor"], group["method"], group["n"], group.get("levels", 0))
     error = max(abs(row["friction"] / mu - 1), abs(row["peak_pressure"] / peak - 1))
-    return [{"n": group["n"], "levels": group.get("levels", 0), "error": error, "time": row["wall_s"],
-             "peak_rss": _measure.peak_rss(), "friction_error": abs(row["friction"] / mu - 1),
-             "peak_pressure_error": abs(row["peak_pressure"] / peak - 1), "iterations": row["iterations"],
-             "elements": row["elements"]}]
+    return [
+        {
+            "n": group["n"],
+            "levels": group.get("levels", 0),
+            "error": error,
+            "time": row["wall_s"],
+            "peak_rss": _measure.peak_rss(),
+            "friction_error": abs(row["friction"] / mu - 1),
+            "peak_pressure_error": abs(row["peak_pressure"] / peak - 1),
+            "iterations": row["iterations"],
+            "elements": row["elements"],
+        }
+    ]
 
 
-_HUNTER_PROBLEM = ("rigid cylinder rolling on an SLS (E_inf/E0 = 3), V lambda = a0, P = 1000 N/m, R = 10 mm, "
-                   "domain 3 a0")
+_HUNTER_PROBLEM = "rigid cylinder rolling on an SLS (E_inf/E0 = 3), V lambda = a0, P = 1000 N/m, R = 10 mm, domain 3 a0"
 
 
-@register("isolated-uniform-hunter", solver="isolated BEM (uniform DC-FFT)", measure=_isolated_group,
-          problem=_HUNTER_PROBLEM, reference="Hunter (exact)",
-          error="max(rel. friction error, rel. peak-pressure error)", knobs=("n",))
+@register(
+    "isolated-uniform-hunter",
+    solver="isolated BEM (uniform DC-FFT)",
+    measure=_isolated_group,
+    problem=_HUNTER_PROBLEM,
+    reference="Hunter (exact)",
+    error="max(rel. friction error, rel. peak-pressure error)",
+    knobs=("n",),
+)
 def _isolated_uniform(quick):
     for n in (128, 256, 512, 1024) if quick else (128, 256, 512, 1024, 2048, 4096, 8192):
         yield {"method": "uniform", "n": n, "factor": 1.0}
 
 
-@register("isolated-adaptive-hunter", solver="isolated BEM (adaptive mesh)", measure=_isolated_group,
-          problem=_HUNTER_PROBLEM, reference="Hunter (exact)",
-          error="max(rel. friction error, rel. peak-pressure error)", knobs=("n", "levels"))
+@register(
+    "isolated-adaptive-hunter",
+    solver="isolated BEM (adaptive mesh)",
+    measure=_isolated_group,
+    problem=_HUNTER_PROBLEM,
+    reference="Hunter (exact)",
+    error="max(rel. friction error, rel. peak-pressure error)",
+    knobs=("n", "levels"),
+)
 def _isolated_adaptive(quick):
     for n in (128, 256, 512) if quick else (128, 256, 512, 1024, 2048):
         yield {"method": "adaptive", "n": n, "levels": int(np.log2(n // 32)), "factor": 1.0}

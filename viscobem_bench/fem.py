@@ -21,6 +21,7 @@ with BLAS/MKL threads pinned to 2, so its peak resident set size is its own.
 
 Run: ``python -m viscobem_bench.fem --quick --out DIR`` (writes ``DIR/fem_benchmark.json``).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -53,19 +54,29 @@ def _rolling_case(material, ell, resolution, domain_factor, solver="auto", gradi
     V = ell * a0 / material.creep_times[0]
     domain = max(40 * a0, domain_factor * ell * a0)
     t0 = time.perf_counter()
-    r = rolling_cylinder(material, radius=R, load=P, speed=V, resolution=resolution, domain=domain,
-                         grading=grading, solver=solver)
+    r = rolling_cylinder(
+        material, radius=R, load=P, speed=V, resolution=resolution, domain=domain, grading=grading, solver=solver
+    )
     wall = time.perf_counter() - t0
     h = hunter.rolling_cylinder(material, radius=R, load=P, speed=V)
     return {
-        "ell_r_over_a0": ell, "resolution": resolution, "domain_over_ell_r": domain / (ell * a0),
-        "grading": grading, "solver": solver, "unknowns": r.n_unknowns, "elements": r.n_elements,
-        "friction": r.friction, "friction_hunter": h.friction,
-        "friction_error": r.friction / h.friction - 1, "peak_pressure_error": r.peak_pressure / h.peak_pressure - 1,
+        "ell_r_over_a0": ell,
+        "resolution": resolution,
+        "domain_over_ell_r": domain / (ell * a0),
+        "grading": grading,
+        "solver": solver,
+        "unknowns": r.n_unknowns,
+        "elements": r.n_elements,
+        "friction": r.friction,
+        "friction_hunter": h.friction,
+        "friction_error": r.friction / h.friction - 1,
+        "peak_pressure_error": r.peak_pressure / h.peak_pressure - 1,
         "dissipation_friction_error": r.friction_dissipation / h.friction - 1,
         "leading_edge_error_over_a0": (r.leading_edge - h.leading_edge) / a0,
         "trailing_edge_error_over_a0": (r.trailing_edge - h.trailing_edge) / a0,
-        "wall_s": wall, "timings": r.timings, "peak_rss_mb": _peak_rss_mb(),
+        "wall_s": wall,
+        "timings": r.timings,
+        "peak_rss_mb": _peak_rss_mb(),
     }
 
 
@@ -81,18 +92,23 @@ def _indentation_case(resolution, steps_per_decade):
     wall = time.perf_counter() - t0
     a_lr = (0.75 * R * P * (1 - m.nu**2) * m.creep_compliance(times)) ** (1 / 3)
     return {
-        "resolution": resolution, "steps_per_decade": steps_per_decade, "unknowns": r.n_unknowns,
-        "steps": r.n_steps, "max_radius_error": float(np.max(np.abs(r.contact_radius / a_lr - 1))),
+        "resolution": resolution,
+        "steps_per_decade": steps_per_decade,
+        "unknowns": r.n_unknowns,
+        "steps": r.n_steps,
+        "max_radius_error": float(np.max(np.abs(r.contact_radius / a_lr - 1))),
         "max_approach_error": float(np.max(np.abs(r.approach / (a_lr**2 / R) - 1))),
-        "wall_s": wall, "peak_rss_mb": _peak_rss_mb(),
+        "wall_s": wall,
+        "peak_rss_mb": _peak_rss_mb(),
     }
 
 
 def _rubber_material(terms, ratio):
     from bem import Material
 
-    return Material.from_prony(E0=1e6, moduli=np.full(terms, (ratio - 1) * 1e6 / terms),
-                               times=np.logspace(-5, -1, terms), nu=0.5)
+    return Material.from_prony(
+        E0=1e6, moduli=np.full(terms, (ratio - 1) * 1e6 / terms), times=np.logspace(-5, -1, terms), nu=0.5
+    )
 
 
 def _rubber_bem(terms, ratio, speed, n=2**14):
@@ -107,15 +123,24 @@ def _rubber_bem(terms, ratio, speed, n=2**14):
     act = np.flatnonzero(r.pressure > 0)
     dx = s.x[1] - s.x[0]
     lead, trail = s.x[act[-1]] + dx / 2, s.x[act[0]] - dx / 2
-    return {"friction": r.friction, "peak_pressure": float(r.pressure.max()), "leading_edge": lead,
-            "trailing_edge": trail, "width": lead - trail}
+    return {
+        "friction": r.friction,
+        "peak_pressure": float(r.pressure.max()),
+        "leading_edge": lead,
+        "trailing_edge": trail,
+        "width": lead - trail,
+    }
 
 
 def _rubber_peak_speed(terms, ratio):
     import scipy.optimize as so
 
-    res = so.minimize_scalar(lambda lv: -_rubber_bem(terms, ratio, 10**lv, n=2**12)["friction"],
-                             bounds=(-4.5, -1.5), method="bounded", options={"xatol": 0.01})
+    res = so.minimize_scalar(
+        lambda lv: -_rubber_bem(terms, ratio, 10**lv, n=2**12)["friction"],
+        bounds=(-4.5, -1.5),
+        method="bounded",
+        options={"xatol": 0.01},
+    )
     return float(10**res.x)
 
 
@@ -124,21 +149,38 @@ def _rubber_case(terms, ratio, speed, resolution):
 
     ref = _rubber_bem(terms, ratio, speed)
     t0 = time.perf_counter()
-    r = rolling_cylinder(_rubber_material(terms, ratio), radius=0.02, load=1500.0, speed=speed, mesh="graded",
-                         resolution=resolution, solver="splu")
+    r = rolling_cylinder(
+        _rubber_material(terms, ratio),
+        radius=0.02,
+        load=1500.0,
+        speed=speed,
+        mesh="graded",
+        resolution=resolution,
+        solver="splu",
+    )
     wall = time.perf_counter() - t0
     w = ref["width"]
     return {
-        "terms": terms, "ratio": ratio, "speed": speed, "resolution": resolution, "unknowns": r.n_unknowns,
-        "elements": r.n_elements, "passes": r.passes, "kept": len(r.terms["kept"]),
+        "terms": terms,
+        "ratio": ratio,
+        "speed": speed,
+        "resolution": resolution,
+        "unknowns": r.n_unknowns,
+        "elements": r.n_elements,
+        "passes": r.passes,
+        "kept": len(r.terms["kept"]),
         "friction_error": r.friction / ref["friction"] - 1,
         "dissipation_friction_error": r.friction_dissipation / ref["friction"] - 1,
         "peak_pressure_error": r.peak_pressure / ref["peak_pressure"] - 1,
         "leading_edge_error_over_width": (r.leading_edge - ref["leading_edge"]) / w,
         "trailing_edge_error_over_width": (r.trailing_edge - ref["trailing_edge"]) / w,
-        "assemble_s": r.timings["assemble"], "factor_s": r.timings["factor"],
-        "flexibility_s": r.timings["flexibility"], "contact_s": r.timings["contact"],
-        "linear_residual": r.linear_residual, "success": r.success, "wall_s": wall,
+        "assemble_s": r.timings["assemble"],
+        "factor_s": r.timings["factor"],
+        "flexibility_s": r.timings["flexibility"],
+        "contact_s": r.timings["contact"],
+        "linear_residual": r.linear_residual,
+        "success": r.success,
+        "wall_s": wall,
         "peak_rss_mb": _peak_rss_mb(),
     }
 
@@ -147,13 +189,27 @@ def rubber_rows(quick=True, fresh=None):
     """The ``rubber`` rows: each material at the BEM's friction peak and a decade below."""
     fresh = fresh or (lambda func, *args: func(*args))
     rows = []
-    for terms, ratio in ([(8, 300.0)] if quick else [(8, 300.0), (20, 1000.0)]):
+    for terms, ratio in [(8, 300.0)] if quick else [(8, 300.0), (20, 1000.0)]:
         peak = _rubber_peak_speed(terms, ratio)
         for speed in (peak, peak / 10):
             rows.append(fresh(_rubber_case, terms, ratio, speed, 6))
-    cols = ["terms", "ratio", "speed", "unknowns", "passes", "friction_error", "dissipation_friction_error",
-            "peak_pressure_error", "leading_edge_error_over_width", "trailing_edge_error_over_width",
-            "factor_s", "flexibility_s", "wall_s", "linear_residual", "peak_rss_mb"]
+    cols = [
+        "terms",
+        "ratio",
+        "speed",
+        "unknowns",
+        "passes",
+        "friction_error",
+        "dissipation_friction_error",
+        "peak_pressure_error",
+        "leading_edge_error_over_width",
+        "trailing_edge_error_over_width",
+        "factor_s",
+        "flexibility_s",
+        "wall_s",
+        "linear_residual",
+        "peak_rss_mb",
+    ]
     print("\nrubbers on the graded mesh vs the isolated BEM (SuperLU)")
     print(_table(rows, cols))
     return rows
@@ -189,17 +245,42 @@ def run(quick: bool = True, out_dir=".") -> dict:
     solver_rows = [fresh(_rolling_case, m, 1.0, 4 if quick else 6, 30, s) for s in solvers]
     ind = [fresh(_indentation_case, n, 20) for n in ([4, 6] if quick else [4, 6, 8, 12])]
 
-    cols = ["ell_r_over_a0", "resolution", "domain_over_ell_r", "grading", "unknowns", "friction_error",
-            "dissipation_friction_error", "peak_pressure_error", "wall_s", "peak_rss_mb"]
+    cols = [
+        "ell_r_over_a0",
+        "resolution",
+        "domain_over_ell_r",
+        "grading",
+        "unknowns",
+        "friction_error",
+        "dissipation_friction_error",
+        "peak_pressure_error",
+        "wall_s",
+        "peak_rss_mb",
+    ]
     print("rolling cylinder vs Hunter (SLS, E_inf/E0 = 3, nu = 0.5)")
     print(_table(rolling, cols))
     print("\nsparse direct solvers (same case)")
-    srows = [dict(r, factor_s=r["timings"]["assemble_factor"], flexibility_s=r["timings"]["flexibility"])
-             for r in solver_rows]
+    srows = [
+        dict(r, factor_s=r["timings"]["assemble_factor"], flexibility_s=r["timings"]["flexibility"])
+        for r in solver_rows
+    ]
     print(_table(srows, ["solver", "unknowns", "factor_s", "flexibility_s", "wall_s", "friction_error"]))
     print("\nindentation vs Lee-Radok (SLS, creep time 1 s)")
-    print(_table(ind, ["resolution", "steps_per_decade", "unknowns", "steps", "max_radius_error",
-                       "max_approach_error", "wall_s", "peak_rss_mb"]))
+    print(
+        _table(
+            ind,
+            [
+                "resolution",
+                "steps_per_decade",
+                "unknowns",
+                "steps",
+                "max_radius_error",
+                "max_approach_error",
+                "wall_s",
+                "peak_rss_mb",
+            ],
+        )
+    )
     rubber = rubber_rows(quick, fresh)
     result = {"quick": quick, "rolling": rolling, "solvers": srows, "indentation": ind, "rubber": rubber}
     out = pathlib.Path(out_dir)

@@ -27,6 +27,7 @@ requested tolerance), ``DIR/isolated_pareto.png`` (error against time, log-log, 
 
 Run: ``python -m viscobem_bench.isolated [--quick] --out DIR`` or ``viscobem bench isolated``.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -39,13 +40,7 @@ import time
 
 import numpy as np
 
-from viscobem_bench._measure import (
-    load_average,
-    peak_rss,
-    run_in_fresh_process,
-    source_snapshot,
-    thread_environment,
-)
+from viscobem_bench._measure import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
 
 RADIUS = 0.01
 LOADS = {"cylinder": 1000.0, "sphere": 1.0, "sphere-wide": 1.0, "sphere-xwide": 1.0}
@@ -86,12 +81,23 @@ def _case(problem, factor, method, n, levels):
     else:
         r = solve_adaptive(s, m, speed=speed, load=load, levels=levels)
     wall = time.perf_counter() - t0
-    row = {"problem": problem, "speed_factor": factor, "method": method, "n": n, "levels": levels,
-           "friction": r.friction, "friction_eq6": r.friction_eq6, "peak_pressure": float(r.pressure.max()),
-           "contact_fraction": r.contact_fraction, "iterations": r.iterations, "success": bool(r.success),
-           "wall_s": wall, "peak_rss_mb": peak_rss() / 2**20}
+    row = {
+        "problem": problem,
+        "speed_factor": factor,
+        "method": method,
+        "n": n,
+        "levels": levels,
+        "friction": r.friction,
+        "friction_eq6": r.friction_eq6,
+        "peak_pressure": float(r.pressure.max()),
+        "contact_fraction": r.contact_fraction,
+        "iterations": r.iterations,
+        "success": bool(r.success),
+        "wall_s": wall,
+        "peak_rss_mb": peak_rss() / 2**20,
+    }
     # the adaptive message starts "<levels> refinement levels, <N_e> elements; ..."
-    row["elements"] = int(re.search(r"(\d+) elements", r.message).group(1)) if method == "adaptive" else n ** s.ndim
+    row["elements"] = int(re.search(r"(\d+) elements", r.message).group(1)) if method == "adaptive" else n**s.ndim
     return row
 
 
@@ -163,8 +169,13 @@ def _plot(groups, path):
             t, e, _ = zip(*sorted(pts))
             ax.loglog(t, e, style[0], alpha=0.35, color="C0" if method == "uniform" else "C1")
             front = _pareto(pts)
-            ax.loglog([f[0] for f in front], [f[1] for f in front], style,
-                      color="C0" if method == "uniform" else "C1", label=f"{method} (Pareto front)")
+            ax.loglog(
+                [f[0] for f in front],
+                [f[1] for f in front],
+                style,
+                color="C0" if method == "uniform" else "C1",
+                label=f"{method} (Pareto front)",
+            )
             for ft, fe, fn in front:
                 ax.annotate(str(fn), (ft, fe), fontsize=7, textcoords="offset points", xytext=(3, 3))
         ax.set_title(key, fontsize=10)
@@ -173,7 +184,7 @@ def _plot(groups, path):
         ax.set_xlabel("wall time (s)")
         ax.set_ylabel("error max(friction, peak pressure)")
         ax.legend(fontsize=8)
-    for ax in axes.ravel()[len(groups):]:
+    for ax in axes.ravel()[len(groups) :]:
         ax.set_visible(False)
     fig.suptitle("Isolated contacts: uniform DC-FFT grid vs adaptive mesh (labels: fine cells per side)")
     fig.tight_layout()
@@ -213,8 +224,14 @@ def _reference(problem, factor, sel, m):
     mu, p_mu, grids = _richardson(uni, "friction")
     pk, p_pk, _ = _richardson(uni, "peak_pressure")
     # order None: not monotone, the finest grid's value is the reference
-    return {"kind": "Richardson extrapolation of the uniform grids", "friction": mu,
-            "peak_pressure": pk, "order_friction": p_mu, "order_peak": p_pk, "grids": grids}
+    return {
+        "kind": "Richardson extrapolation of the uniform grids",
+        "friction": mu,
+        "peak_pressure": pk,
+        "order_friction": p_mu,
+        "order_peak": p_pk,
+        "grids": grids,
+    }
 
 
 def _errors(problems, rows, m):
@@ -241,31 +258,48 @@ def _compare(groups):
         for tol in TOLERANCES:
             tu = _fastest([r for r in sel if r["method"] == "uniform"], tol)
             ta = _fastest([r for r in sel if r["method"] == "adaptive"], tol)
-            winner = None if tu is None and ta is None else (
-                "uniform" if ta is None or (tu is not None and tu <= ta) else "adaptive")
+            winner = (
+                None
+                if tu is None and ta is None
+                else ("uniform" if ta is None or (tu is not None and tu <= ta) else "adaptive")
+            )
             choice.append({"problem": key, "tolerance": tol, "uniform_s": tu, "adaptive_s": ta, "faster": winner})
     same_grid = []
     for key, sel in groups.items():
         for r in sel:
             u = [q for q in sel if q["method"] == "uniform" and q["n"] == r["n"]]
             if r["method"] == "adaptive" and u:
-                same_grid.append({"problem": key, "n": r["n"], "levels": r["levels"], "elements": r["elements"],
-                                  "uniform_s": u[0]["wall_s"], "adaptive_s": r["wall_s"],
-                                  "uniform_error": u[0]["error"], "adaptive_error": r["error"],
-                                  "uniform_rss_mb": u[0]["peak_rss_mb"], "adaptive_rss_mb": r["peak_rss_mb"]})
+                same_grid.append(
+                    {
+                        "problem": key,
+                        "n": r["n"],
+                        "levels": r["levels"],
+                        "elements": r["elements"],
+                        "uniform_s": u[0]["wall_s"],
+                        "adaptive_s": r["wall_s"],
+                        "uniform_error": u[0]["error"],
+                        "adaptive_error": r["error"],
+                        "uniform_rss_mb": u[0]["peak_rss_mb"],
+                        "adaptive_rss_mb": r["peak_rss_mb"],
+                    }
+                )
     return choice, same_grid
 
 
 def _print_tables(groups, choice):
-    print(f"\n{'problem':32s} {'method':9s} {'n':>6s} {'lev':>3s} {'elem':>8s} {'mu err':>9s} {'peak err':>9s} "
-          f"{'wall s':>8s} {'RSS MB':>7s}")
+    print(
+        f"\n{'problem':32s} {'method':9s} {'n':>6s} {'lev':>3s} {'elem':>8s} {'mu err':>9s} {'peak err':>9s} "
+        f"{'wall s':>8s} {'RSS MB':>7s}"
+    )
     for key, sel in groups.items():
         for r in sorted(sel, key=lambda r: (r["method"], r["n"])):
-            print(f"{key:32s} {r['method']:9s} {r['n']:6d} {r['levels']:3d} {r['elements']:8d} "
-                  f"{r['friction_error']:9.2e} {r['peak_error']:9.2e} {r['wall_s']:8.3f} {r['peak_rss_mb']:7.0f}")
+            print(
+                f"{key:32s} {r['method']:9s} {r['n']:6d} {r['levels']:3d} {r['elements']:8d} "
+                f"{r['friction_error']:9.2e} {r['peak_error']:9.2e} {r['wall_s']:8.3f} {r['peak_rss_mb']:7.0f}"
+            )
     print(f"\n{'problem':32s} {'tol':>7s} {'uniform s':>10s} {'adaptive s':>10s}  faster")
     for c in choice:
-        fmt = (lambda v: f"{v:10.3f}" if v is not None else f"{'-':>10s}")
+        fmt = lambda v: f"{v:10.3f}" if v is not None else f"{'-':>10s}"
         print(f"{c['problem']:32s} {c['tolerance']:7.0e} {fmt(c['uniform_s'])} {fmt(c['adaptive_s'])}  {c['faster']}")
 
 
@@ -283,19 +317,37 @@ def run(quick: bool = True, out_dir=".", only=None) -> dict:
     references, groups = _errors(problems, rows, m)
     choice, same_grid = _compare(groups)
     _print_tables(groups, choice)
-    fronts = {key: {method: _pareto([(r["wall_s"], r["error"], r["n"]) for r in sel if r["method"] == method])
-                    for method in ("uniform", "adaptive")} for key, sel in groups.items()}
+    fronts = {
+        key: {
+            method: _pareto([(r["wall_s"], r["error"], r["n"]) for r in sel if r["method"] == method])
+            for method in ("uniform", "adaptive")
+        }
+        for key, sel in groups.items()
+    }
     _plot(groups, out / "isolated_pareto.png")
-    head = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True,
-                          cwd=pathlib.Path(__file__).parent).stdout.strip() or None
-    result = {"quick": quick, "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-              "git_head": head, "bem_snapshot": snapshot,
-              "machine": {"platform": platform.platform(), "cpus": os.cpu_count(),
-                          "load_average_1min": load_average()},
-              "material": {"E0": m.E0, "E_inf": m.E_inf, "creep_time": float(m.creep_times[0]), "nu": m.nu},
-              "radius": RADIUS, "loads": LOADS, "domain_over_a0": DOMAIN, "speed_factors": SPEEDS,
-              "references": references,
-              "cases": rows, "pareto": fronts, "fastest_at_tolerance": choice, "same_grid": same_grid}
+    head = (
+        subprocess.run(
+            ["git", "rev-parse", "HEAD"], capture_output=True, text=True, cwd=pathlib.Path(__file__).parent
+        ).stdout.strip()
+        or None
+    )
+    result = {
+        "quick": quick,
+        "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        "git_head": head,
+        "bem_snapshot": snapshot,
+        "machine": {"platform": platform.platform(), "cpus": os.cpu_count(), "load_average_1min": load_average()},
+        "material": {"E0": m.E0, "E_inf": m.E_inf, "creep_time": float(m.creep_times[0]), "nu": m.nu},
+        "radius": RADIUS,
+        "loads": LOADS,
+        "domain_over_a0": DOMAIN,
+        "speed_factors": SPEEDS,
+        "references": references,
+        "cases": rows,
+        "pareto": fronts,
+        "fastest_at_tolerance": choice,
+        "same_grid": same_grid,
+    }
     (out / "isolated_benchmark.json").write_text(json.dumps(result, indent=1))
     print(f"\nwrote {out / 'isolated_benchmark.json'} and {out / 'isolated_pareto.png'}")
     return result

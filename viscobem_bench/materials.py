@@ -50,18 +50,14 @@ TEMPS = TREF + np.arange(-45.0, 61.0, 5.0)
 
 def truth():
     """The 11-term series (Pa, s) both problems are made from."""
-    return Material.from_prony(
-        E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11)
-    )
+    return Material.from_prony(E0=2e6, moduli=np.full(11, 2e6 * 199 / 11), times=np.logspace(-7, 3, 11))
 
 
 def prony12_data(seed):
     m = truth()
     rng = np.random.default_rng(seed)
     e = m.complex_modulus(W12)
-    return e.real * (1 + 0.01 * rng.standard_normal(W12.size)), e.imag * (
-        1 + 0.01 * rng.standard_normal(W12.size)
-    )
+    return e.real * (1 + 0.01 * rng.standard_normal(W12.size)), e.imag * (1 + 0.01 * rng.standard_normal(W12.size))
 
 
 def master_data(seed):
@@ -195,9 +191,7 @@ def _pyvisco_master_curve(f, T, e1, e2, opt):
     from pyvisco import master, shift
 
     label = np.searchsorted(TEMPS, T - 1e-6)
-    df_raw = pd.DataFrame(
-        {"f_set": f, "E_stor": e1 / 1e6, "E_loss": e2 / 1e6, "T": T - 273.15, "Set": label}
-    )
+    df_raw = pd.DataFrame({"f_set": f, "E_stor": e1 / 1e6, "E_loss": e2 / 1e6, "T": T - 273.15, "Set": label})
     df_raw["T_round"] = df_raw["T"].round()
     df_raw.domain, df_raw.modul = "freq", "E"
     ref = round(TREF - 273.15)
@@ -288,9 +282,7 @@ def _table(result, markdown=False):
             [r["method"], str(r["terms"])] + [f"{r[c]:.4f}" for c in cols] + [f"{r['time']:.2f}"]
             for r in result[problem]
         ]
-        lines.append(
-            f"{problem} (worst over {result['seeds']} seeds; relative errors, log_aT in decades)"
-        )
+        lines.append(f"{problem} (worst over {result['seeds']} seeds; relative errors, log_aT in decades)")
         if markdown:
             lines += ["", "| " + " | ".join(heads) + " |", "|" + "---|" * len(heads)]
             lines += ["| " + " | ".join(r) + " |" for r in rows]
@@ -317,9 +309,7 @@ def run(quick=False, out_dir=None, seeds=None, echo=print):
         out = Path(out_dir)
         out.mkdir(parents=True, exist_ok=True)
         (out / "materials.json").write_text(json.dumps(result, indent=1))
-        about = __doc__.split("\n\n", 2)[
-            2
-        ]  # the problems and methods, from this module's docstring
+        about = __doc__.split("\n\n", 2)[2]  # the problems and methods, from this module's docstring
         (out / "materials.md").write_text(
             "# Prony fits and master curves: viscobem and pyvisco\n\n"
             + about
@@ -331,9 +321,7 @@ def run(quick=False, out_dir=None, seeds=None, echo=print):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(
-        prog="python -m viscobem_bench.materials", description=__doc__.split("\n")[0]
-    )
+    parser = argparse.ArgumentParser(prog="python -m viscobem_bench.materials", description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="one seed (smoke test)")
     parser.add_argument("--seeds", type=int, nargs="+", help="noise seeds (default 1 2 3 4 5)")
     parser.add_argument("--out", default=None, help="directory for materials.json and .md")

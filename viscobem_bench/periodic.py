@@ -42,6 +42,7 @@ PolonskyKeerRey (optional) solves the identical elastic problem, compared to our
 solve. ``matvecs`` counts operator applications (one FFT pair each): the target "within
 1.5x of iterations x FFT-pair time" reads *iterations* as operator applications.
 """
+
 import argparse
 import os
 import platform
@@ -97,6 +98,7 @@ def _extrapolate(history, n):
         k = float(np.clip(np.log(t1 / t0) / np.log(n1 / n0), 2.0, 4.5))
     return t1 * (n / n1) ** k
 
+
 class _Session:
     """The state of one run: its temporary folder, loads, time spent per case, and notes."""
 
@@ -126,9 +128,13 @@ class _Session:
 
     def run_case(self, case, n, max_case_seconds, probe_iterations):
         """One of our cases at size ``n`` in a fresh process."""
-        spec = {"heights": self.heights_file(n), "case": case, "load": self.loads[case],
-                "tight_budget": -1.0 if probe_iterations else max_case_seconds / 2,
-                "maxiter": probe_iterations}
+        spec = {
+            "heights": self.heights_file(n),
+            "case": case,
+            "load": self.loads[case],
+            "tight_budget": -1.0 if probe_iterations else max_case_seconds / 2,
+            "maxiter": probe_iterations,
+        }
         if case == "elastic":
             spec["save_reference"] = str(self.tmp / f"reference_{n}.npy")
         try:
@@ -143,16 +149,24 @@ class _Session:
         self.spent[case].append((n, res["wall_time"]))
         self.cases.append(res)
         if res["reference"] is None and not probe_iterations:
-            self.notes.append(f"{case} at n = {n}: tight solve skipped (default solve "
-                              f"{res['wall_time']:.0f} s > {max_case_seconds / 2:.0f} s)")
-        self.echo(f"  n = {n:5d} {case:9s} wall {res['wall_time']:8.3f} s, {res['matvecs']:5d} matvecs, "
-                  f"contact {res['contact_fraction']:.4f}, peak {res['peak_rss'] / MiB:.0f} MiB, "
-                  f"p err {fmt(res['pressure_error_l2'], '.1e')}, converged {res['success']}")
+            self.notes.append(
+                f"{case} at n = {n}: tight solve skipped (default solve "
+                f"{res['wall_time']:.0f} s > {max_case_seconds / 2:.0f} s)"
+            )
+        self.echo(
+            f"  n = {n:5d} {case:9s} wall {res['wall_time']:8.3f} s, {res['matvecs']:5d} matvecs, "
+            f"contact {res['contact_fraction']:.4f}, peak {res['peak_rss'] / MiB:.0f} MiB, "
+            f"p err {fmt(res['pressure_error_l2'], '.1e')}, converged {res['success']}"
+        )
 
     def run_tamaas(self, n, tol, threads, max_seconds):
         """tamaas at size ``n``: given ``threads``, or 1 and all cores while cheap (the faster kept)."""
-        spec = {"heights": self.heights_file(n), "load": self.loads["elastic"], "tol": tol,
-                "reference": str(self.tmp / f"reference_{n}.npy")}
+        spec = {
+            "heights": self.heights_file(n),
+            "load": self.loads["elastic"],
+            "tol": tol,
+            "reference": str(self.tmp / f"reference_{n}.npy"),
+        }
         estimate = _extrapolate(self.spent["tamaas"], n) or 0.0
         cheap = not (self.best_threads and estimate > max_seconds / 4)
         trials = threads or (sorted({1, os.cpu_count() or 1}) if cheap else [self.best_threads])
@@ -160,8 +174,9 @@ class _Session:
         for k in trials:
             t0 = time.perf_counter()
             try:
-                runs[k] = _measure.run_in_fresh_process(tamaas_worker, spec, timeout=2 * max_seconds,
-                                                        env=_measure.thread_environment(1, omp_threads=k))
+                runs[k] = _measure.run_in_fresh_process(
+                    tamaas_worker, spec, timeout=2 * max_seconds, env=_measure.thread_environment(1, omp_threads=k)
+                )
             except ProcessTimeout:
                 self.note(f"tamaas ({k} threads) at n = {n} stopped after {2 * max_seconds:.0f} s")
             except Exception as err:
@@ -171,11 +186,16 @@ class _Session:
         if not runs:
             return
         self.best_threads = min(runs, key=lambda k: runs[k]["wall_time"])
-        t = dict(runs[self.best_threads], omp_threads=self.best_threads,
-                 wall_time_by_threads={str(k): v["wall_time"] for k, v in runs.items()})
+        t = dict(
+            runs[self.best_threads],
+            omp_threads=self.best_threads,
+            wall_time_by_threads={str(k): v["wall_time"] for k, v in runs.items()},
+        )
         self.tamaas_runs.append(t)  # its speed-up is set by _more_rounds, from our final time
-        self.echo(f"  n = {n:5d} tamaas    wall {t['wall_time']:8.3f} s, {t['iterations']} iterations, "
-                  f"p err {t['pressure_error_l2']:.1e}, threads {t['wall_time_by_threads']}")
+        self.echo(
+            f"  n = {n:5d} tamaas    wall {t['wall_time']:8.3f} s, {t['iterations']} iterations, "
+            f"p err {t['pressure_error_l2']:.1e}, threads {t['wall_time_by_threads']}"
+        )
 
 
 def _tamaas_version(wanted, echo):
@@ -188,9 +208,20 @@ def _tamaas_version(wanted, echo):
     return tamaas.__version__
 
 
-def run(quick: bool = False, out_dir=None, sizes=None, *, tamaas=True, tamaas_tol=TAMAAS_TOL,
-        tamaas_threads=None, tamaas_max_seconds=300.0, max_case_seconds=400.0, cases=CASES,
-        probe_iterations=None, echo=print) -> dict:
+def run(
+    quick: bool = False,
+    out_dir=None,
+    sizes=None,
+    *,
+    tamaas=True,
+    tamaas_tol=TAMAAS_TOL,
+    tamaas_threads=None,
+    tamaas_max_seconds=300.0,
+    max_case_seconds=400.0,
+    cases=CASES,
+    probe_iterations=None,
+    echo=print,
+) -> dict:
     """Run the benchmark, print the table, write ``periodic.json`` and ``periodic.md``.
 
     Parameters
@@ -229,14 +260,19 @@ def run(quick: bool = False, out_dir=None, sizes=None, *, tamaas=True, tamaas_to
     started, load_start = time.perf_counter(), _measure.load_average()
     tamaas_version = _tamaas_version(tamaas, echo)
     selected = tuple(c for c in CASES if c in cases)
-    with tempfile.TemporaryDirectory(prefix="viscobem-bench-") as tmp, \
-            _measure.source_snapshot(bem, Path(tmp) / "src") as code:
-        echo(f"measuring a snapshot of {code['source']} (sha256 {code['sha256'][:12]}, git {code['git_head']}"
-             f"{' + uncommitted changes' if code['git_dirty'] else ''})")
+    with (
+        tempfile.TemporaryDirectory(prefix="viscobem-bench-") as tmp,
+        _measure.source_snapshot(bem, Path(tmp) / "src") as code,
+    ):
+        echo(
+            f"measuring a snapshot of {code['source']} (sha256 {code['sha256'][:12]}, git {code['git_head']}"
+            f"{' + uncommitted changes' if code['git_dirty'] else ''})"
+        )
         run = _Session(Path(tmp), ours_env, echo)
         echo(f"calibrating loads for {TARGET_CONTACT:.0%} contact ...")
         calib = _measure.run_in_fresh_process(
-            calibrate_worker, {k: run.heights_file(n) for k, n in CALIBRATION_N.items()}, env=ours_env)
+            calibrate_worker, {k: run.heights_file(n) for k, n in CALIBRATION_N.items()}, env=ours_env
+        )
         run.loads = {case: calib[case]["load"] for case in CASES}
         for n in sizes:
             for case in selected:
@@ -252,47 +288,82 @@ def run(quick: bool = False, out_dir=None, sizes=None, *, tamaas=True, tamaas_to
     targets_ = targets(cases, tamaas_runs)
     mats = materials()
     result = {
-        "benchmark": "periodic", "issue": 2,
-        "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()), "code": code,
-        "total_time": time.perf_counter() - started, "quick": quick, "sizes": sizes,
-        "cases_selected": list(selected), "probe_iterations": probe_iterations,
-        "machine": {"cpu_count": cores, "platform": platform.platform(), "python": platform.python_version(),
-                    "numpy": np.__version__, "scipy": scipy.__version__, "tamaas": tamaas_version,
-                    "load_average_1min_start": load_start, "load_average_1min_end": _measure.load_average()},
-        "threads": {"child_environment": ours_env, "tamaas_omp_threads": tamaas_threads or "fastest of 1 and all cores (see tamaas[].omp_threads)",
-                    "fft_workers": bem.get_threads(), "note": "each case in a fresh spawned process; "
-                    "BLAS pinned to 1 thread; FFTs on bem.get_threads() threads (all cores)"},
-        "problem": {"length_m": LENGTH, "surface": dict(SURFACE, generated_on=BASE_N, resampling="exact"),
-                    "xi": XI, "rtol": RTOL, "rtol_reference": RTOL_REF, "maxiter": MAXITER, "loads_N": loads,
-                    "calibration": calib, "target_contact_fraction": TARGET_CONTACT,
-                    "materials": {k: {"E0": m.E0, "E_inf": m.E_inf, "nu": m.nu, "speed_m_s": v,
-                                      "relaxation_times_s": m.relaxation_times.tolist(),
-                                      "moduli_Pa": m.moduli.tolist(),
-                                      "creep_times_s": m.creep_times.tolist()}
-                                  for k, (m, v) in mats.items()}},
+        "benchmark": "periodic",
+        "issue": 2,
+        "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        "code": code,
+        "total_time": time.perf_counter() - started,
+        "quick": quick,
+        "sizes": sizes,
+        "cases_selected": list(selected),
+        "probe_iterations": probe_iterations,
+        "machine": {
+            "cpu_count": cores,
+            "platform": platform.platform(),
+            "python": platform.python_version(),
+            "numpy": np.__version__,
+            "scipy": scipy.__version__,
+            "tamaas": tamaas_version,
+            "load_average_1min_start": load_start,
+            "load_average_1min_end": _measure.load_average(),
+        },
+        "threads": {
+            "child_environment": ours_env,
+            "tamaas_omp_threads": tamaas_threads or "fastest of 1 and all cores (see tamaas[].omp_threads)",
+            "fft_workers": bem.get_threads(),
+            "note": "each case in a fresh spawned process; "
+            "BLAS pinned to 1 thread; FFTs on bem.get_threads() threads (all cores)",
+        },
+        "problem": {
+            "length_m": LENGTH,
+            "surface": dict(SURFACE, generated_on=BASE_N, resampling="exact"),
+            "xi": XI,
+            "rtol": RTOL,
+            "rtol_reference": RTOL_REF,
+            "maxiter": MAXITER,
+            "loads_N": loads,
+            "calibration": calib,
+            "target_contact_fraction": TARGET_CONTACT,
+            "materials": {
+                k: {
+                    "E0": m.E0,
+                    "E_inf": m.E_inf,
+                    "nu": m.nu,
+                    "speed_m_s": v,
+                    "relaxation_times_s": m.relaxation_times.tolist(),
+                    "moduli_Pa": m.moduli.tolist(),
+                    "creep_times_s": m.creep_times.tolist(),
+                }
+                for k, (m, v) in mats.items()
+            },
+        },
         "definitions": {
             "matvecs": "operator applications (one FFT pair + multiply each); the target "
-                       "'within 1.5x of iterations x FFT-pair time' reads iterations as matvecs",
+            "'within 1.5x of iterations x FFT-pair time' reads iterations as matvecs",
             "fft_pair_ratio": "wall_time / (matvecs * fft_pair_time_min), fft_pair_time_min the "
-                              "fastest of repeated plain FFT pairs, scipy.fft irfftn(rfftn(x)) on all "
-                              "cores, on the same grid (the target's 'FFT-pair time')",
+            "fastest of repeated plain FFT pairs, scipy.fft irfftn(rfftn(x)) on all "
+            "cores, on the same grid (the target's 'FFT-pair time')",
             "product_ratio": "wall_time / (matvecs * product_time_min), product_time_min the fastest "
-                             "of repeated op.displacement(p) on the same operator (FFT pair + multiply, "
-                             "the multiply and first inverse pass in place)",
+            "of repeated op.displacement(p) on the same operator (FFT pair + multiply, "
+            "the multiply and first inverse pass in place)",
             "wall_time": "bem.solve wall time, operator construction included (operator_setup_time "
-                         f"is that construction alone); the fastest of {REPEATS} solves when the first "
-                         f"took under {REPEAT_BUDGET:g} s, and of {REPEATS} more in each of "
-                         f"{ROUNDS - 1} later fresh process(es) (all in wall_times; fft_pair_time_min "
-                         "likewise the fastest of all rounds)",
+            f"is that construction alone); the fastest of {REPEATS} solves when the first "
+            f"took under {REPEAT_BUDGET:g} s, and of {REPEATS} more in each of "
+            f"{ROUNDS - 1} later fresh process(es) (all in wall_times; fft_pair_time_min "
+            "likewise the fastest of all rounds)",
             "pressure_error_l2": "||p(rtol 1e-8) - p(rtol 1e-11)|| / ||p(rtol 1e-11)||",
             "friction_error": "|mu - mu_ref| / mu_ref (none for the elastic case, mu = 0)",
             "peak_rss": "ru_maxrss after the default solve (bytes); rss_increment = peak_rss - "
-                        "current RSS after imports (inputs included). On Linux ru_maxrss of a spawned "
-                        "child starts at the parent's RSS at fork time (rss_after_imports), so peaks "
-                        "below that (~100-150 MB here) are not resolved",
+            "current RSS after imports (inputs included). On Linux ru_maxrss of a spawned "
+            "child starts at the parent's RSS at fork time (rss_after_imports), so peaks "
+            "below that (~100-150 MB here) are not resolved",
             "tamaas": f"PolonskyKeerRey, tol {tamaas_tol:g} on its own error measure, max_iter "
-                      f"{TAMAAS_MAX_ITER}; wall_time includes model and solver construction"},
-        "cases": cases, "tamaas": tamaas_runs, "targets": targets_, "notes": notes,
+            f"{TAMAAS_MAX_ITER}; wall_time includes model and solver construction",
+        },
+        "cases": cases,
+        "tamaas": tamaas_runs,
+        "targets": targets_,
+        "notes": notes,
     }
     publish(result, report, out_dir, "periodic", echo)
     return result
@@ -305,8 +376,12 @@ def _more_rounds(cases, tamaas_runs, heights_file, loads, env, echo):
         for res in cases:
             if res["wall_times"][0] > REPEAT_BUDGET or res["memory_probe"]:
                 continue
-            spec = {"heights": heights_file(res["n"]), "case": res["case"], "load": loads[res["case"]],
-                    "timing_only": True}
+            spec = {
+                "heights": heights_file(res["n"]),
+                "case": res["case"],
+                "load": loads[res["case"]],
+                "timing_only": True,
+            }
             try:
                 more = _measure.run_in_fresh_process(case_worker, spec, env=env, timeout=8 * REPEAT_BUDGET)
             except Exception as err:  # keep the first round's numbers
@@ -317,18 +392,21 @@ def _more_rounds(cases, tamaas_runs, heights_file, loads, env, echo):
             res["fft_pair_time_min"] = min(res["fft_pair_time_min"], more["fft_pair_time_min"])
             res["fft_pair_ratio"] = res["wall_time"] / (res["matvecs"] * res["fft_pair_time_min"])
             res["product_ratio"] = res["wall_time"] / (res["matvecs"] * res["product_time_min"])
-            echo(f"  n = {res['n']:5d} {res['case']:9s} wall {res['wall_time']:8.3f} s after "
-                 f"{len(res['wall_times'])} timed solves")
+            echo(
+                f"  n = {res['n']:5d} {res['case']:9s} wall {res['wall_time']:8.3f} s after "
+                f"{len(res['wall_times'])} timed solves"
+            )
     for t in tamaas_runs:
         ours = next(c for c in cases if c["n"] == t["n"] and c["case"] == "elastic")
         t["ours_wall_time"], t["speedup"] = ours["wall_time"], t["wall_time"] / ours["wall_time"]
 
 
-
 def profile(case="elastic", n=1024, out_dir=None, echo=print):
     """cProfile one default solve of ``case`` at size ``n`` (fresh process); returns the report."""
-    with tempfile.TemporaryDirectory(prefix="viscobem-bench-") as tmp, \
-            _measure.source_snapshot(bem, Path(tmp) / "src") as code:
+    with (
+        tempfile.TemporaryDirectory(prefix="viscobem-bench-") as tmp,
+        _measure.source_snapshot(bem, Path(tmp) / "src") as code,
+    ):
         env = _measure.thread_environment(1)
         paths = {}
         for key, m in CALIBRATION_N.items():
@@ -338,8 +416,9 @@ def profile(case="elastic", n=1024, out_dir=None, echo=print):
         path = Path(tmp) / f"heights_{n}_profile.npy"
         np.save(path, surface_heights(n))
         load = calib[case]["load"]
-        text = _measure.run_in_fresh_process(profile_worker, {"heights": str(path), "case": case,
-                                                               "load": load}, env=env)
+        text = _measure.run_in_fresh_process(
+            profile_worker, {"heights": str(path), "case": case, "load": load}, env=env
+        )
         text = f"bem sources sha256 {code['sha256'][:12]} (git {code['git_head']}, dirty {code['git_dirty']})\n" + text
     echo(text)
     if out_dir is not None:
@@ -355,22 +434,45 @@ def main(argv=None):
     parser.add_argument("--out", default=None, help="directory for periodic.json and periodic.md")
     parser.add_argument("--no-tamaas", action="store_true", help="skip the tamaas comparison")
     parser.add_argument("--tamaas-tol", type=float, default=TAMAAS_TOL)
-    parser.add_argument("--tamaas-threads", type=int, default=None, help="OpenMP threads for tamaas (default: the faster of 1 and all cores)")
-    parser.add_argument("--tamaas-max-seconds", type=float, default=300.0,
-                        help="skip tamaas where its extrapolated time exceeds this")
-    parser.add_argument("--max-case-seconds", type=float, default=400.0,
-                        help="skip one of our cases where its extrapolated time exceeds this")
+    parser.add_argument(
+        "--tamaas-threads",
+        type=int,
+        default=None,
+        help="OpenMP threads for tamaas (default: the faster of 1 and all cores)",
+    )
+    parser.add_argument(
+        "--tamaas-max-seconds", type=float, default=300.0, help="skip tamaas where its extrapolated time exceeds this"
+    )
+    parser.add_argument(
+        "--max-case-seconds",
+        type=float,
+        default=400.0,
+        help="skip one of our cases where its extrapolated time exceeds this",
+    )
     parser.add_argument("--cases", nargs="+", choices=CASES, default=list(CASES), help="cases to run")
-    parser.add_argument("--probe-iterations", type=int, default=None,
-                        help="memory probe: cap active-set iterations (no convergence, no tight solve)")
+    parser.add_argument(
+        "--probe-iterations",
+        type=int,
+        default=None,
+        help="memory probe: cap active-set iterations (no convergence, no tight solve)",
+    )
     parser.add_argument("--profile", choices=CASES, help="only cProfile one solve of this case at the first size")
     args = parser.parse_args(argv)
     if args.profile:
         profile(args.profile, (args.sizes or [1024])[0], args.out)
         return 0
-    run(args.quick, args.out, args.sizes, tamaas=not args.no_tamaas, tamaas_tol=args.tamaas_tol,
-        tamaas_threads=args.tamaas_threads, tamaas_max_seconds=args.tamaas_max_seconds,
-        max_case_seconds=args.max_case_seconds, cases=args.cases, probe_iterations=args.probe_iterations)
+    run(
+        args.quick,
+        args.out,
+        args.sizes,
+        tamaas=not args.no_tamaas,
+        tamaas_tol=args.tamaas_tol,
+        tamaas_threads=args.tamaas_threads,
+        tamaas_max_seconds=args.tamaas_max_seconds,
+        max_case_seconds=args.max_case_seconds,
+        cases=args.cases,
+        probe_iterations=args.probe_iterations,
+    )
     return 0
 
 

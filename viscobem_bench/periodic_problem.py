@@ -1,5 +1,6 @@
 """The periodic benchmark's problem: surface, materials and the loads that give ~10 % contact
 (see :mod:`viscobem_bench.periodic` for the description)."""
+
 import numpy as np
 
 import bem
@@ -35,11 +36,12 @@ GiB, MiB = 2.0**30, 2.0**20
 def materials():
     """``{name: (Material, speed m/s)}`` of the benchmark (see module docstring)."""
     seed = bem.Material.standard_linear_solid(E0=E_ELASTIC / 3, E_inf=E_ELASTIC, creep_time=0.01)
-    rubber = bem.Material.from_prony(E0=1e6, moduli=np.full(20, (1e9 - 1e6) / 20),
-                                     times=np.logspace(-10, 2, 20))
-    return {"elastic": (bem.Material.elastic(E_ELASTIC), 0.0),
-            "seed": (seed, XI * LENGTH / seed.creep_times[0]),
-            "rubber20": (rubber, XI * LENGTH / rubber.creep_times[0])}
+    rubber = bem.Material.from_prony(E0=1e6, moduli=np.full(20, (1e9 - 1e6) / 20), times=np.logspace(-10, 2, 20))
+    return {
+        "elastic": (bem.Material.elastic(E_ELASTIC), 0.0),
+        "seed": (seed, XI * LENGTH / seed.creep_times[0]),
+        "rubber20": (rubber, XI * LENGTH / rubber.creep_times[0]),
+    }
 
 
 def surface_heights(n):
@@ -52,7 +54,7 @@ def surface_heights(n):
     hq, half = fft.forward(h), BASE_N // 2  # Nyquist row and column are zero (band limit)
     big = np.zeros((n, n // 2 + 1), dtype=complex)
     big[:half, : half + 1] = hq[:half, : half + 1]
-    big[n - half:, : half + 1] = hq[half:, : half + 1]
+    big[n - half :, : half + 1] = hq[half:, : half + 1]
     return fft.inverse(big, (n, n))
 
 
@@ -63,8 +65,7 @@ def load_for_contact(surface, material, speed, load, *, maxiter, tol=0.003, step
     last load is the answer."""
     history = []
     for _ in range(steps):
-        res = bem.solve(surface, material, speed=speed, load=load, rtol=1e-6, maxiter=maxiter,
-                        raise_on_failure=False)
+        res = bem.solve(surface, material, speed=speed, load=load, rtol=1e-6, maxiter=maxiter, raise_on_failure=False)
         frac = res.contact_fraction
         history.append((load, frac, res.success))
         if abs(frac - TARGET_CONTACT) <= tol:
@@ -93,7 +94,10 @@ def calibrate_worker(heights_paths):
         surface = bem.surfaces.from_heights(np.load(heights_paths[name]), LENGTH)
         load = guess if name == "elastic" else guess * material.E0 / E_ELASTIC
         history = load_for_contact(surface, material, speed, load, maxiter=MAXITER[name])
-        out[name] = {"n": surface.n, "load": history[-1][0], "contact_fraction": history[-1][1],
-                     "history (load N, contact, converged)": history}
+        out[name] = {
+            "n": surface.n,
+            "load": history[-1][0],
+            "contact_fraction": history[-1][1],
+            "history (load N, contact, converged)": history,
+        }
     return out
-

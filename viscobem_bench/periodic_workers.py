@@ -1,5 +1,6 @@
 """Work the periodic benchmark does in fresh processes: one case at one size, tamaas on the
 identical elastic problem, and a profile of one solve."""
+
 import contextlib
 import os
 import re
@@ -38,12 +39,15 @@ def case_worker(spec):
 
     def default_solve():  # each building its operator afresh
         bem.sliding.clear_operator_cache()
-        return bem.solve(surface, material, speed=speed, load=spec["load"], rtol=RTOL,
-                         maxiter=maxiter, raise_on_failure=False)
+        return bem.solve(
+            surface, material, speed=speed, load=spec["load"], rtol=RTOL, maxiter=maxiter, raise_on_failure=False
+        )
 
     if spec.get("timing_only"):  # a later round (ROUNDS): the repeated solves and the FFT pair only
-        return {"wall_times": [default_solve().wall_time for _ in range(REPEATS)],
-                "fft_pair_time_min": _measure.fft_pair_time(surface.shape)[1]}
+        return {
+            "wall_times": [default_solve().wall_time for _ in range(REPEATS)],
+            "fft_pair_time_min": _measure.fft_pair_time(surface.shape)[1],
+        }
     res = default_solve()
     peak = _measure.peak_rss()
     walls = [res.wall_time]  # the fastest of REPEATS solves
@@ -59,8 +63,15 @@ def case_worker(spec):
     setup = time.perf_counter() - t0
     ref = None
     if res.wall_time <= spec.get("tight_budget", np.inf):
-        ref = bem.solve(surface, material, speed=speed, load=spec["load"], rtol=RTOL_REF,
-                        maxiter=MAXITER[spec["case"]], raise_on_failure=False)
+        ref = bem.solve(
+            surface,
+            material,
+            speed=speed,
+            load=spec["load"],
+            rtol=RTOL_REF,
+            maxiter=MAXITER[spec["case"]],
+            raise_on_failure=False,
+        )
         if spec.get("save_reference"):
             np.save(spec["save_reference"], ref.pressure)
         err_p = float(np.linalg.norm(res.pressure - ref.pressure) / np.linalg.norm(ref.pressure))
@@ -68,23 +79,51 @@ def case_worker(spec):
     else:
         err_p = err_mu = None
     return {
-        "n": surface.n, "case": spec["case"], "speed": speed, "load": spec["load"],
-        "bem_imported_from": os.path.dirname(bem.__file__), "maxiter": maxiter,
+        "n": surface.n,
+        "case": spec["case"],
+        "speed": speed,
+        "load": spec["load"],
+        "bem_imported_from": os.path.dirname(bem.__file__),
+        "maxiter": maxiter,
         "memory_probe": bool(spec.get("maxiter")),
-        "success": res.success, "message": res.message, "residual": res.residual,
-        "iterations": res.iterations, "matvecs": res.matvecs, "wall_time": wall, "wall_times": walls,
-        "operator_setup_time": setup, "fft_pair_time": pair, "fft_pair_time_min": pair_min,
-        "fft_pair_repeats": repeats, "fft_pair_ratio": wall / (res.matvecs * pair_min),
-        "product_time": product, "product_time_min": product_min, "product_repeats": product_repeats,
+        "success": res.success,
+        "message": res.message,
+        "residual": res.residual,
+        "iterations": res.iterations,
+        "matvecs": res.matvecs,
+        "wall_time": wall,
+        "wall_times": walls,
+        "operator_setup_time": setup,
+        "fft_pair_time": pair,
+        "fft_pair_time_min": pair_min,
+        "fft_pair_repeats": repeats,
+        "fft_pair_ratio": wall / (res.matvecs * pair_min),
+        "product_time": product,
+        "product_time_min": product_min,
+        "product_repeats": product_repeats,
         "product_ratio": wall / (res.matvecs * product_min),
-        "contact_fraction": res.contact_fraction, "friction": res.friction,
-        "friction_eq6": res.friction_eq6, "peak_rss": peak, "rss_after_imports": rss_base,
-        "rss_after_imports_current": rss_base_now, "rss_with_inputs": rss_inputs,
-        "rss_increment": peak - (rss_base_now or rss_base), "load_average_1min": load_avg,
-        "reference": ref and {"rtol": RTOL_REF, "success": ref.success, "residual": ref.residual,
-                              "iterations": ref.iterations, "matvecs": ref.matvecs, "wall_time": ref.wall_time,
-                              "contact_fraction": ref.contact_fraction, "friction": ref.friction},
-        "pressure_error_l2": err_p, "friction_error": err_mu,
+        "contact_fraction": res.contact_fraction,
+        "friction": res.friction,
+        "friction_eq6": res.friction_eq6,
+        "peak_rss": peak,
+        "rss_after_imports": rss_base,
+        "rss_after_imports_current": rss_base_now,
+        "rss_with_inputs": rss_inputs,
+        "rss_increment": peak - (rss_base_now or rss_base),
+        "load_average_1min": load_avg,
+        "reference": ref
+        and {
+            "rtol": RTOL_REF,
+            "success": ref.success,
+            "residual": ref.residual,
+            "iterations": ref.iterations,
+            "matvecs": ref.matvecs,
+            "wall_time": ref.wall_time,
+            "contact_fraction": ref.contact_fraction,
+            "friction": ref.friction,
+        },
+        "pressure_error_l2": err_p,
+        "friction_error": err_mu,
     }
 
 
@@ -138,16 +177,22 @@ def tamaas_worker(spec):
     ref = np.load(spec["reference"])
     iters = [int(m.group(1)) for m in re.finditer(r"^\s*(\d+)\s+\S+\s+\S+\s*$", log[0], re.M)]
     return {
-        "n": n, "version": tamaas.__version__, "tol": spec["tol"], "max_iter": TAMAAS_MAX_ITER,
-        "iterations": max(iters) if iters else None, "error_measure": float(error),
-        "wall_time": t2 - t0, "solve_time": t2 - t1, "E_star": float(model.E_star),
+        "n": n,
+        "version": tamaas.__version__,
+        "tol": spec["tol"],
+        "max_iter": TAMAAS_MAX_ITER,
+        "iterations": max(iters) if iters else None,
+        "error_measure": float(error),
+        "wall_time": t2 - t0,
+        "solve_time": t2 - t1,
+        "E_star": float(model.E_star),
         "contact_fraction": float(np.count_nonzero(p > 0) / p.size),
         "pressure_error_l2": float(np.linalg.norm(p - ref) / np.linalg.norm(ref)),
         "max_pressure_difference_over_mean": float(np.abs(p - ref).max() / ref.mean()),
-        "peak_rss": peak, "rss_increment": peak - rss_base,
+        "peak_rss": peak,
+        "rss_increment": peak - rss_base,
         "load_average_1min": _measure.load_average(),
-        "warnings": [line for line in log[0].splitlines()
-                     if re.search(r"warn|converge|fail", line, re.I)][:5],
+        "warnings": [line for line in log[0].splitlines() if re.search(r"warn|converge|fail", line, re.I)][:5],
     }
 
 
@@ -162,15 +207,23 @@ def profile_worker(spec, top=30):
     prof = cProfile.Profile()
     t0 = time.perf_counter()
     prof.enable()
-    res = bem.solve(surface, material, speed=speed, load=spec["load"], rtol=RTOL,
-                    maxiter=MAXITER[spec["case"]], raise_on_failure=False)
+    res = bem.solve(
+        surface,
+        material,
+        speed=speed,
+        load=spec["load"],
+        rtol=RTOL,
+        maxiter=MAXITER[spec["case"]],
+        raise_on_failure=False,
+    )
     prof.disable()
     wall = time.perf_counter() - t0
     buf = io.StringIO()
-    buf.write(f"profile of {spec['case']} at n = {surface.n}: {wall:.2f} s under cProfile, "
-              f"{res.matvecs} operator products, {res.iterations} active-set iterations\n")
+    buf.write(
+        f"profile of {spec['case']} at n = {surface.n}: {wall:.2f} s under cProfile, "
+        f"{res.matvecs} operator products, {res.iterations} active-set iterations\n"
+    )
     stats = pstats.Stats(prof, stream=buf).strip_dirs()
     stats.sort_stats("tottime").print_stats(top)
     stats.sort_stats("cumulative").print_stats(top)
     return buf.getvalue()
-

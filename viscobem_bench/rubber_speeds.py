@@ -14,6 +14,7 @@ median symbol phase ``|arg a_q|`` (0 for a symmetric operator; the solver's stro
 non-symmetric path starts above 45 degrees), operator products, active-set iterations, wall
 time, contact fraction and friction. Everything runs in this process, one solve at a time.
 """
+
 import argparse
 import sys
 import time
@@ -22,13 +23,7 @@ import numpy as np
 
 import bem
 from bem.sliding import operator_for
-from viscobem_bench.periodic_problem import (
-    LENGTH,
-    TARGET_CONTACT,
-    load_for_contact,
-    materials,
-    surface_heights,
-)
+from viscobem_bench.periodic_problem import LENGTH, TARGET_CONTACT, load_for_contact, materials, surface_heights
 from viscobem_bench.periodic_report import publish, table
 
 XIS = (1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4)
@@ -45,15 +40,27 @@ def _calibrated(surface, material, speed, load):
 def _solve_row(case, xi, material, speed, surfaces, load):
     op = operator_for(surfaces[0], material, speed)
     phase = np.degrees(np.abs(np.angle(op.symbol)))
-    row = {"case": case, "xi": xi, "speed_m_s": speed, "load_N": load,
-           "max_phase_deg": float(phase.max()), "median_phase_deg": float(np.median(phase)), "by_n": {}}
+    row = {
+        "case": case,
+        "xi": xi,
+        "speed_m_s": speed,
+        "load_N": load,
+        "max_phase_deg": float(phase.max()),
+        "median_phase_deg": float(np.median(phase)),
+        "by_n": {},
+    }
     for s in surfaces:
         t0 = time.perf_counter()
         res = bem.solve(s, material, speed=speed, load=load, rtol=RTOL, maxiter=MAXITER, raise_on_failure=False)
-        row["by_n"][str(s.n)] = {"matvecs": res.matvecs, "iterations": res.iterations,
-                                 "wall_time": time.perf_counter() - t0, "success": res.success,
-                                 "contact_fraction": res.contact_fraction, "friction": res.friction,
-                                 "message": res.message}
+        row["by_n"][str(s.n)] = {
+            "matvecs": res.matvecs,
+            "iterations": res.iterations,
+            "wall_time": time.perf_counter() - t0,
+            "success": res.success,
+            "contact_fraction": res.contact_fraction,
+            "friction": res.friction,
+            "message": res.message,
+        }
     return row
 
 
@@ -76,21 +83,34 @@ def run(quick=False, out_dir=None, sizes=None, xis=None, echo=print):
         rows.append(_solve_row("rubber20", xi, rubber, speed, surfaces, load))
         guess = load  # stiffer with speed: start the next calibration from here
         echo(_row_text(rows[-1], sizes))
-    result = {"benchmark": "rubber_speeds", "issue": 2, "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-              "sizes": list(sizes), "rtol": RTOL, "target_contact_fraction": TARGET_CONTACT,
-              "longest_creep_time_s": tau, "rows": rows, "total_time": time.perf_counter() - started}
+    result = {
+        "benchmark": "rubber_speeds",
+        "issue": 2,
+        "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+        "sizes": list(sizes),
+        "rtol": RTOL,
+        "target_contact_fraction": TARGET_CONTACT,
+        "longest_creep_time_s": tau,
+        "rows": rows,
+        "total_time": time.perf_counter() - started,
+    }
     publish(result, _report, out_dir, "rubber_speeds", echo)
     return result
 
 
 def _row_text(row, sizes):
     xi = "-" if row["xi"] is None else f"{row['xi']:.0e}"
-    cells = [f"{row['case']:8s} xi {xi:>6s}", f"phase max {row['max_phase_deg']:4.1f} median {row['median_phase_deg']:4.1f}",
-             f"load {row['load_N']:.4g} N"]
+    cells = [
+        f"{row['case']:8s} xi {xi:>6s}",
+        f"phase max {row['max_phase_deg']:4.1f} median {row['median_phase_deg']:4.1f}",
+        f"load {row['load_N']:.4g} N",
+    ]
     for n in sizes:
         r = row["by_n"][str(n)]
-        cells.append(f"{n}²: {r['matvecs']} products, {r['iterations']} it, {r['wall_time']:.2f} s, "
-                     f"contact {r['contact_fraction']:.3f}{'' if r['success'] else ' NOT CONVERGED'}")
+        cells.append(
+            f"{n}²: {r['matvecs']} products, {r['iterations']} it, {r['wall_time']:.2f} s, "
+            f"contact {r['contact_fraction']:.3f}{'' if r['success'] else ' NOT CONVERGED'}"
+        )
     return " | ".join(cells)
 
 
@@ -103,20 +123,34 @@ def _report(result, markdown=False):
     headers += ["friction"]
     rows = []
     for r in result["rows"]:
-        cells = [r["case"], "-" if r["xi"] is None else f"{r['xi']:.0e}", f"{r['max_phase_deg']:.1f}",
-                 f"{r['median_phase_deg']:.1f}", f"{r['load_N']:.4g}"]
+        cells = [
+            r["case"],
+            "-" if r["xi"] is None else f"{r['xi']:.0e}",
+            f"{r['max_phase_deg']:.1f}",
+            f"{r['median_phase_deg']:.1f}",
+            f"{r['load_N']:.4g}",
+        ]
         for n in sizes:
             b, e = r["by_n"][str(n)], elastic["by_n"][str(n)]
-            cells += [str(b["matvecs"]) + ("" if b["success"] else " (not converged)"),
-                      f"{b['matvecs'] / e['matvecs']:.1f}", str(b["iterations"]), f"{b['wall_time']:.2f}",
-                      f"{b['contact_fraction']:.3f}"]
+            cells += [
+                str(b["matvecs"]) + ("" if b["success"] else " (not converged)"),
+                f"{b['matvecs'] / e['matvecs']:.1f}",
+                str(b["iterations"]),
+                f"{b['wall_time']:.2f}",
+                f"{b['contact_fraction']:.3f}",
+            ]
         cells.append(f"{r['by_n'][str(sizes[-1])]['friction']:.4f}")
         rows.append(cells)
     title = "Rubber (E_inf/E0 = 1000, 20 terms) over speed: cost against the elastic case"
-    return "\n\n".join([("# " if markdown else "") + title,
-                        f"rtol {result['rtol']:g}; each load gives about {result['target_contact_fraction']:.0%} "
-                        f"contact on {sizes[0]}²; xi = v tau / L, tau = {result['longest_creep_time_s']:.4g} s",
-                        table(headers, rows, markdown), f"total time {result['total_time']:.0f} s"])
+    return "\n\n".join(
+        [
+            ("# " if markdown else "") + title,
+            f"rtol {result['rtol']:g}; each load gives about {result['target_contact_fraction']:.0%} "
+            f"contact on {sizes[0]}²; xi = v tau / L, tau = {result['longest_creep_time_s']:.4g} s",
+            table(headers, rows, markdown),
+            f"total time {result['total_time']:.0f} s",
+        ]
+    )
 
 
 def main(argv=None):

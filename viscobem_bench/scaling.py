@@ -5,6 +5,7 @@ and tamaas's PolonskyKeerRey on the identical problem (if installed). The expone
 ``t ∝ N**k`` (``N = n²``) is fitted by least squares in log-log, beside the exponent of
 ``t / (N log N)`` (0 for exact n log n behaviour).
 """
+
 import os
 
 import numpy as np
@@ -26,9 +27,17 @@ def _scaling_worker(spec):
     op = operator_for(surface, m, 0.0)
     p = res.pressure.copy()
     pair, _, _ = _measure.median_time(lambda: op.displacement(p), budget=0.5)
-    return {"n": surface.n, "time": res.wall_time, "iterations": res.iterations, "matvecs": res.matvecs,
-            "fft_pair_time": pair, "fft_pair_ratio": res.wall_time / (res.matvecs * pair),
-            "contact_fraction": res.contact_fraction, "peak_rss": peak, "success": res.success}
+    return {
+        "n": surface.n,
+        "time": res.wall_time,
+        "iterations": res.iterations,
+        "matvecs": res.matvecs,
+        "fft_pair_time": pair,
+        "fft_pair_ratio": res.wall_time / (res.matvecs * pair),
+        "contact_fraction": res.contact_fraction,
+        "peak_rss": peak,
+        "success": res.success,
+    }
 
 
 def _fit_exponent(n, t):
@@ -45,6 +54,7 @@ def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
 
     try:
         import tamaas
+
         tamaas_version = tamaas.__version__
     except ImportError:
         tamaas_version = None
@@ -56,8 +66,12 @@ def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
         hpath, rpath = str(tmp / f"scaling_h_{n}.npy"), str(tmp / f"scaling_p_{n}.npy")
         np.save(hpath, rough_heights(n))
         try:
-            row = _measure.run_in_fresh_process(_scaling_worker, {"heights": hpath, "reference": rpath},
-                                                env=_measure.thread_environment(1), timeout=max_seconds)
+            row = _measure.run_in_fresh_process(
+                _scaling_worker,
+                {"heights": hpath, "reference": rpath},
+                env=_measure.thread_environment(1),
+                timeout=max_seconds,
+            )
         except Exception as err:  # a timeout or crash at one size must not lose the others
             notes.append(f"scaling n = {n}: {type(err).__name__}: {err}")
             echo("  " + notes[-1])
@@ -65,25 +79,43 @@ def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
         if tamaas_version:
             spec = {"heights": hpath, "load": rough_load(elastic()), "tol": 1e-9, "reference": rpath}
             try:
-                tam = _measure.run_in_fresh_process(tamaas_worker, spec, timeout=max_seconds,
-                                                    env=_measure.thread_environment(1, omp_threads=cores))
-                row.update(tamaas_time=tam["wall_time"], tamaas_ratio=tam["wall_time"] / row["time"],
-                           tamaas_pressure_difference=tam["pressure_error_l2"],
-                           tamaas_iterations=tam["iterations"])
+                tam = _measure.run_in_fresh_process(
+                    tamaas_worker, spec, timeout=max_seconds, env=_measure.thread_environment(1, omp_threads=cores)
+                )
+                row.update(
+                    tamaas_time=tam["wall_time"],
+                    tamaas_ratio=tam["wall_time"] / row["time"],
+                    tamaas_pressure_difference=tam["pressure_error_l2"],
+                    tamaas_iterations=tam["iterations"],
+                )
             except Exception as err:
                 notes.append(f"tamaas n = {n}: {type(err).__name__}: {err}")
         rows.append(row)
-        echo(f"  scaling n = {n:5d}: {row['time']:8.3f} s, {row['matvecs']} products, FFT pair "
-             f"{1e3 * row['fft_pair_time']:.3f} ms, ratio {row['fft_pair_ratio']:.2f}"
-             + (f", tamaas {row['tamaas_time']:.3f} s (x{row['tamaas_ratio']:.2f})" if "tamaas_time" in row else ""))
+        echo(
+            f"  scaling n = {n:5d}: {row['time']:8.3f} s, {row['matvecs']} products, FFT pair "
+            f"{1e3 * row['fft_pair_time']:.3f} ms, ratio {row['fft_pair_ratio']:.2f}"
+            + (f", tamaas {row['tamaas_time']:.3f} s (x{row['tamaas_ratio']:.2f})" if "tamaas_time" in row else "")
+        )
     fit = {}
     if len(rows) >= 3:
         k, k2 = _fit_exponent([r["n"] for r in rows], [r["time"] for r in rows])
         kp, _ = _fit_exponent([r["n"] for r in rows], [r["fft_pair_time"] for r in rows])
         km, _ = _fit_exponent([r["n"] for r in rows], [r["time"] / r["matvecs"] for r in rows])
-        fit = {"exponent_time": k, "exponent_time_over_NlogN": k2, "exponent_fft_pair": kp,
-               "exponent_time_per_product": km}
-        echo(f"  fitted t ~ N^{k:.3f} (N = n^2); t/(N log N) ~ N^{k2:.3f}; FFT pair ~ N^{kp:.3f}; "
-             f"time per operator product ~ N^{km:.3f}")
-    return {"sizes": list(sizes), "rows": rows, "fit": fit, "tamaas": tamaas_version, "notes": notes,
-            "tamaas_threads": cores}
+        fit = {
+            "exponent_time": k,
+            "exponent_time_over_NlogN": k2,
+            "exponent_fft_pair": kp,
+            "exponent_time_per_product": km,
+        }
+        echo(
+            f"  fitted t ~ N^{k:.3f} (N = n^2); t/(N log N) ~ N^{k2:.3f}; FFT pair ~ N^{kp:.3f}; "
+            f"time per operator product ~ N^{km:.3f}"
+        )
+    return {
+        "sizes": list(sizes),
+        "rows": rows,
+        "fit": fit,
+        "tamaas": tamaas_version,
+        "notes": notes,
+        "tamaas_threads": cores,
+    }

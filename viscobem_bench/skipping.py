@@ -6,6 +6,7 @@ The last one times a study of the command line; the study runner is passed in by
 (``viscobem bench`` gives :func:`viscobem_cli.main.run_scene_text`), so the benchmarks do not
 depend on the command line package that runs them.
 """
+
 import re
 import time
 from pathlib import Path
@@ -35,12 +36,18 @@ def _skip_worker(spec):
     folded = rubber.folded(w_min, w_max)
     load = rough_load(rubber) * 3
     for name, m in (("full", rubber), ("folded", folded)):
-        build, _, _ = _measure.median_time(lambda m=m: PeriodicHalfSpace(surface.shape, L, m, speed), min_repeats=3,
-                                           max_repeats=10, budget=1.0)
+        build, _, _ = _measure.median_time(
+            lambda m=m: PeriodicHalfSpace(surface.shape, L, m, speed), min_repeats=3, max_repeats=10, budget=1.0
+        )
         sliding.clear_operator_cache()
         res, t = timed(lambda m=m: bem.solve(surface, m, speed=speed, load=load))
-        out[f"fold_{name}"] = {"terms": int(m.moduli.size), "operator_build_time": build, "solve_time": t,
-                               "friction": res.friction, "matvecs": res.matvecs}
+        out[f"fold_{name}"] = {
+            "terms": int(m.moduli.size),
+            "operator_build_time": build,
+            "solve_time": t,
+            "friction": res.friction,
+            "matvecs": res.matvecs,
+        }
     out["fold_friction_change"] = abs(out["fold_folded"]["friction"] / out["fold_full"]["friction"] - 1)
     # 2. reuse across a sweep: a load sweep at one speed with and without the operator cache,
     # and a speed sweep with and without warm starts
@@ -54,23 +61,28 @@ def _skip_worker(spec):
             if not cached:
                 sliding.clear_operator_cache()
             bem.solve(surface, rubber, speed=speed, load=f)
+
     load_sweep(True)  # warm-up, untimed
     times = {True: [], False: []}
     for _ in range(2):  # interleaved repeats: the machine's load drifts
         for cached in (False, True):
             times[cached].append(timed(lambda cached=cached: load_sweep(cached))[1])
-    build, _, _ = _measure.median_time(lambda: PeriodicHalfSpace(surface.shape, L, rubber, speed), min_repeats=3,
-                                       max_repeats=10, budget=0.5)
-    out["reuse_operator"] = {"solves": len(loads), "time_cached": min(times[True]),
-                             "time_rebuilt": min(times[False]), "operator_build_time": build,
-                             "material": "40-term rubber (unfolded)"}
+    build, _, _ = _measure.median_time(
+        lambda: PeriodicHalfSpace(surface.shape, L, rubber, speed), min_repeats=3, max_repeats=10, budget=0.5
+    )
+    out["reuse_operator"] = {
+        "solves": len(loads),
+        "time_cached": min(times[True]),
+        "time_rebuilt": min(times[False]),
+        "operator_build_time": build,
+        "material": "40-term rubber (unfolded)",
+    }
     speeds = v * np.logspace(-2, 2, 9)
     bem.friction_curve(surface, m, speeds=speeds[:2], load=rough_load(m))  # warm-up, untimed
     sliding.clear_operator_cache()
     _, t_warm = timed(lambda: bem.friction_curve(surface, m, speeds=speeds, load=rough_load(m), warm_start=True))
     sliding.clear_operator_cache()
-    _, t_coldstart = timed(lambda: bem.friction_curve(surface, m, speeds=speeds, load=rough_load(m),
-                                                       warm_start=False))
+    _, t_coldstart = timed(lambda: bem.friction_curve(surface, m, speeds=speeds, load=rough_load(m), warm_start=False))
     out["warm_start"] = {"speeds": len(speeds), "time_warm": t_warm, "time_cold": t_coldstart}
     return out
 
@@ -83,8 +95,10 @@ def _outputs_worker(spec):
     text = re.sub(r"xi = \{[^}]*\}", "xi = { start = 1e-3, stop = 1e-1, num = 5 }", text)
     text = re.sub(r"^scales = \d+", f"scales = {spec['n'] // 4}", text, flags=re.M)
     out = {}
-    for name, outputs in (("all", "friction_curve = true\nfields = true\nplots = true\nvtk = true"),
-                          ("needed", "friction_curve = true\nfields = false\nplots = false\nvtk = false")):
+    for name, outputs in (
+        ("all", "friction_curve = true\nfields = true\nplots = true\nvtk = true"),
+        ("needed", "friction_curve = true\nfields = false\nplots = false\nvtk = false"),
+    ):
         body = re.sub(r"\[outputs\][^\[]*", "", text) + f"\n[outputs]\n{outputs}\n"
         t0 = time.perf_counter()
         rec = spec["study"](body, Path(spec["tmp"]) / name)
@@ -103,14 +117,17 @@ def run_skip(quick, tmp, echo=print, study=None):
         res["outputs"] = _measure.run_in_fresh_process(_outputs_worker, spec, env=env)
     res["n"] = n
     f, r, w = res["fold_full"], res["reuse_operator"], res["warm_start"]
-    echo(f"  folding: {f['terms']} -> {res['fold_folded']['terms']} terms, operator build "
-         f"{1e3 * f['operator_build_time']:.2f} -> {1e3 * res['fold_folded']['operator_build_time']:.2f} ms, "
-         f"friction change {res['fold_friction_change']:.1e}")
-    echo(f"  operator cache over {r['solves']} loads: {r['time_rebuilt']:.3f} s rebuilt -> {r['time_cached']:.3f} s "
-         f"(one build {1e3 * r['operator_build_time']:.1f} ms)")
+    echo(
+        f"  folding: {f['terms']} -> {res['fold_folded']['terms']} terms, operator build "
+        f"{1e3 * f['operator_build_time']:.2f} -> {1e3 * res['fold_folded']['operator_build_time']:.2f} ms, "
+        f"friction change {res['fold_friction_change']:.1e}"
+    )
+    echo(
+        f"  operator cache over {r['solves']} loads: {r['time_rebuilt']:.3f} s rebuilt -> {r['time_cached']:.3f} s "
+        f"(one build {1e3 * r['operator_build_time']:.1f} ms)"
+    )
     echo(f"  warm starts over {w['speeds']} speeds: {w['time_cold']:.3f} s -> {w['time_warm']:.3f} s")
     if "outputs" in res:
         o = res["outputs"]
         echo(f"  outputs: everything {o['all']['total']:.3f} s -> friction curve only {o['needed']['total']:.3f} s")
     return res
-

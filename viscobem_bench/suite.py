@@ -18,6 +18,7 @@ pinned to one thread and FFTs on all cores, see :mod:`viscobem_bench._measure`):
 
 Tables and plots: :mod:`viscobem_bench.report`.
 """
+
 import argparse
 import json
 import os
@@ -51,14 +52,27 @@ def run(quick=False, out_dir="bench-out", *, solvers=None, scaling=True, skip=Tr
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     started = time.perf_counter()
-    result = {"benchmark": "suite", "issue": 7, "quick": quick,
-              "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
-              "machine": {"cpu_count": os.cpu_count(), "platform": platform.platform(),
-                          "python": platform.python_version(), "numpy": np.__version__,
-                          "scipy": scipy.__version__, "load_average": _measure.load_average()},
-              "solvers": {}, "scaling": {"rows": []}, "notes": []}
-    with tempfile.TemporaryDirectory(prefix="viscobem-bench-") as tmp, \
-            _measure.source_snapshot(bem, Path(tmp) / "src") as code:
+    result = {
+        "benchmark": "suite",
+        "issue": 7,
+        "quick": quick,
+        "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+        "machine": {
+            "cpu_count": os.cpu_count(),
+            "platform": platform.platform(),
+            "python": platform.python_version(),
+            "numpy": np.__version__,
+            "scipy": scipy.__version__,
+            "load_average": _measure.load_average(),
+        },
+        "solvers": {},
+        "scaling": {"rows": []},
+        "notes": [],
+    }
+    with (
+        tempfile.TemporaryDirectory(prefix="viscobem-bench-") as tmp,
+        _measure.source_snapshot(bem, Path(tmp) / "src") as code,
+    ):
         result["code"] = code
         tmp = Path(tmp)
         for name, entry in REGISTRY.items():
@@ -75,13 +89,22 @@ def run(quick=False, out_dir="bench-out", *, solvers=None, scaling=True, skip=Tr
                     continue
                 points += got
                 for p in got:
-                    echo("  " + ", ".join(f"{k} {p[k]:g}" for k in entry.knobs if k in p)
-                         + f": time {p['time']:.3f} s" + (f", error {p['error']:.2e}" if p.get("error") else ""))
+                    echo(
+                        "  "
+                        + ", ".join(f"{k} {p[k]:g}" for k in entry.knobs if k in p)
+                        + f": time {p['time']:.3f} s"
+                        + (f", error {p['error']:.2e}" if p.get("error") else "")
+                    )
             points = FINISH.get(name, lambda x: x)(points)
-            result["solvers"][name] = {"solver": entry.solver, "problem": entry.problem,
-                                       "reference": entry.reference, "error": entry.error,
-                                       "knobs": list(entry.knobs), "points": points,
-                                       "pareto": pareto_front(points)}
+            result["solvers"][name] = {
+                "solver": entry.solver,
+                "problem": entry.problem,
+                "reference": entry.reference,
+                "error": entry.error,
+                "knobs": list(entry.knobs),
+                "points": points,
+                "pareto": pareto_front(points),
+            }
         if scaling:
             echo("scaling with problem size (elastic, periodic BEM)")
             result["scaling"] = run_scaling(quick, tmp, echo)
@@ -106,8 +129,7 @@ def main(argv=None):
     parser.add_argument("--no-scaling", action="store_true")
     parser.add_argument("--no-skip", action="store_true")
     args = parser.parse_args(argv)
-    run(args.quick, args.out, solvers=args.solvers,
-        scaling=not args.no_scaling, skip=not args.no_skip)
+    run(args.quick, args.out, solvers=args.solvers, scaling=not args.no_scaling, skip=not args.no_skip)
     return 0
 
 

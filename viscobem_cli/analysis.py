@@ -18,6 +18,7 @@ fitted by an ellipse (:func:`bem.anisotropy.psd_contour`); ``stretch_x`` (extent
 ``q_x`` over extent along ``q_y``) is also given relative to its value at the lowest speed
 (``stretch_x_relative``), since a finite ensemble keeps some anisotropy of its own.
 """
+
 import numpy as np
 
 from bem import anisotropy, persson
@@ -59,17 +60,30 @@ def anisotropy_summary(scene, recs, l):
                 refs[r] = (int(i), _moments(p["moments"]))
                 break
     out = {"load": scene.loads[l], "xi": scene.xi.tolist(), "reference_xi": None}
-    keys = ["gamma", "gamma_se", "theta_max", "gamma_ensemble", "theta_ensemble", "gamma_relative",
-            "gamma_relative_se", "theta_relative", "gamma_relative_ensemble", "theta_relative_ensemble",
-            "m02_over_m20"]
+    keys = [
+        "gamma",
+        "gamma_se",
+        "theta_max",
+        "gamma_ensemble",
+        "theta_ensemble",
+        "gamma_relative",
+        "gamma_relative_se",
+        "theta_relative",
+        "gamma_relative_ensemble",
+        "theta_relative_ensemble",
+        "m02_over_m20",
+    ]
     for key in keys:
         out[key] = [None] * n
     if refs:
         out["reference_xi"] = [float(scene.xi[refs[r][0]]) for r in sorted(refs)]
     ref_ens = _tensor_mean([m for _, m in refs.values()]) if refs else None
     for i in range(n):
-        ms = {r: _moments(recs[(r, l, i)]["moments"]) for r in range(k)
-              if recs.get((r, l, i)) is not None and recs[(r, l, i)].get("moments")}
+        ms = {
+            r: _moments(recs[(r, l, i)]["moments"])
+            for r in range(k)
+            if recs.get((r, l, i)) is not None and recs[(r, l, i)].get("moments")
+        }
         if not ms:
             continue
         out["gamma"][i], out["gamma_se"][i] = _mean_se([m.gamma for m in ms.values()])
@@ -92,9 +106,19 @@ def contact_psd_summary(scene, recs, points_dir):
     """Ellipse of the ensemble contact PSD per load and speed; also the PSD maps (for plots)."""
     summary, maps = [], {}
     for l in range(len(scene.loads)):
-        rows = {"load": scene.loads[l], "xi": scene.xi.tolist(), "level": scene.contact_level,
-                "smoothing": scene.psd_smoothing, "aspect_ratio": [], "orientation": [], "stretch_x": [],
-                "semi_major": [], "semi_minor": [], "fit_residual": [], "message": []}
+        rows = {
+            "load": scene.loads[l],
+            "xi": scene.xi.tolist(),
+            "level": scene.contact_level,
+            "smoothing": scene.psd_smoothing,
+            "aspect_ratio": [],
+            "orientation": [],
+            "stretch_x": [],
+            "semi_major": [],
+            "semi_minor": [],
+            "fit_residual": [],
+            "message": [],
+        }
         for i in range(scene.speeds.size):
             chis = []
             for r, surf in enumerate(scene.realisations):
@@ -106,8 +130,7 @@ def contact_psd_summary(scene, recs, points_dir):
             ell, msg = None, ""
             if chis:
                 try:
-                    cpsd = anisotropy.contact_psd(np.stack(chis), scene.surface.length,
-                                                  smoothing=scene.psd_smoothing)
+                    cpsd = anisotropy.contact_psd(np.stack(chis), scene.surface.length, smoothing=scene.psd_smoothing)
                     ell = anisotropy.psd_contour(cpsd, scene.contact_level, direction=scene.direction)
                     maps[(l, i)] = (cpsd, ell)
                 except InputError as err:
@@ -131,7 +154,7 @@ def persson_summary(scene):
     """Persson's friction and contact area per load: continuous (target PSD of a generated
     isotropic surface) and discrete (grid sums over each realisation, averaged)."""
     out = []
-    area = scene.surface.length ** 2
+    area = scene.surface.length**2
     for load in scene.loads:
         row = {"load": load, "pressure": load / area, "xi": scene.xi.tolist()}
         mus, areas = [], []
@@ -142,8 +165,9 @@ def persson_summary(scene):
         row["friction_discrete"] = np.mean(mus, axis=0).tolist()
         row["contact_fraction_discrete"] = np.mean(areas, axis=0).tolist()
         try:
-            mu, a = persson.friction_for_surface(scene.surface, scene.material, speeds=scene.speeds,
-                                                 pressure=load / area)
+            mu, a = persson.friction_for_surface(
+                scene.surface, scene.material, speeds=scene.speeds, pressure=load / area
+            )
             row["friction"], row["contact_fraction"] = mu.tolist(), a.tolist()
             row["form"] = "continuous (target PSD)"
         except InputError:

@@ -2,6 +2,7 @@
 
 ``viscobem --help`` and ``viscobem run NAME`` read this module only, so they stay fast.
 """
+
 import difflib
 import importlib
 from pathlib import Path
@@ -44,8 +45,10 @@ def scene_path(name=None):
     names = builtin_scenes()
     close = difflib.get_close_matches(str(name), names, n=1)
     hint = f" Did you mean {close[0]!r}?" if close else ""
-    raise InputError(f"no built-in scene named {str(name)!r} (and no such file).{hint} Built-in scenes: "
-                     f"{', '.join(names)}; or give a scene file SCENE.toml (template: viscobem scene)")
+    raise InputError(
+        f"no built-in scene named {str(name)!r} (and no such file).{hint} Built-in scenes: "
+        f"{', '.join(names)}; or give a scene file SCENE.toml (template: viscobem scene)"
+    )
 
 
 def install_hint(module):
@@ -54,7 +57,7 @@ def install_hint(module):
     if top not in EXTRAS:
         return None
     extra, what = EXTRAS[top]
-    return f"{top} is not installed; {what} needs it: pip install \"viscobem[{extra}]\""
+    return f'{top} is not installed; {what} needs it: pip install "viscobem[{extra}]"'
 
 
 def require(module):

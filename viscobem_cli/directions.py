@@ -9,6 +9,7 @@ plots, resumable like any study), and the top-level ``results.json`` gathers
 first load, ensemble means) beside the first direction's full record, with a polar plot
 ``friction_polar.png`` of mu(theta) at each speed.
 """
+
 import dataclasses
 import json
 import math
@@ -27,10 +28,12 @@ def parse(loading, surface, periodic, method="auto"):
     """The scene's directions (radians, a tuple) from ``[loading] direction_deg``."""
     value = loading.get("direction_deg", 0.0)
     values = value if isinstance(value, list) else [value]
-    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-                             for v in values):
-        raise InputError(f"[loading] direction_deg must be a finite angle in degrees or a non-empty list of "
-                         f"them, got {value!r}")
+    if not values or not all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in values
+    ):
+        raise InputError(
+            f"[loading] direction_deg must be a finite angle in degrees or a non-empty list of them, got {value!r}"
+        )
     if len({float(v) for v in values}) != len(values):
         raise InputError(f"[loading] direction_deg must not repeat an angle, got {value!r}")
     out = []
@@ -85,11 +88,16 @@ def gather(scene, records):
     keys = ("friction", "friction_eq6", "contact_fraction")
     table = {k: [r["friction_curve"][k] for r in records] for k in keys}
     thetas = scene.directions[: len(records)]
-    return {"direction_deg": [round(math.degrees(t), 9) for t in thetas], "direction_rad": list(thetas),
-            "speed": records[0]["friction_curve"]["speed"], "xi": records[0]["friction_curve"]["xi"],
-            "load": records[0]["friction_curve"]["load"], **table,
-            "folders": [folder_name(t) for t in thetas],
-            "note": "rows per direction, columns per speed; friction opposes the motion along each direction"}
+    return {
+        "direction_deg": [round(math.degrees(t), 9) for t in thetas],
+        "direction_rad": list(thetas),
+        "speed": records[0]["friction_curve"]["speed"],
+        "xi": records[0]["friction_curve"]["xi"],
+        "load": records[0]["friction_curve"]["load"],
+        **table,
+        "folders": [folder_name(t) for t in thetas],
+        "note": "rows per direction, columns per speed; friction opposes the motion along each direction",
+    }
 
 
 def polar_plot(table, path):
@@ -105,8 +113,9 @@ def polar_plot(table, path):
     for j, xi in enumerate(table["xi"]):
         t, m = theta[order], mu[order, j]
         closed = len(t) > 2
-        ax.plot(np.append(t, t[0]) if closed else t, np.append(m, m[0]) if closed else m, "o-", ms=4,
-                label=f"xi = {xi:.3g}")
+        ax.plot(
+            np.append(t, t[0]) if closed else t, np.append(m, m[0]) if closed else m, "o-", ms=4, label=f"xi = {xi:.3g}"
+        )
     ax.set_title("friction coefficient against sliding direction\n(angle from +x toward +y)", fontsize=9)
     ax.legend(fontsize=7, loc="lower left", bbox_to_anchor=(-0.1, -0.12))
     _save(fig, path)

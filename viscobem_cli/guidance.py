@@ -10,6 +10,7 @@
   texts that say what is doubtful and what to change; the run prints them and stores them
   in ``results.json["warnings"]``.
 """
+
 import math
 
 import numpy as np
@@ -21,7 +22,7 @@ NEGLIGIBLE = 0.01  # friction below 1 % of the curve's peak is not compared (bot
 def hertz_radius(kind, *, modulus, nu, radius, load):
     """Hertz contact radius (m) of a rigid ``"sphere"`` (load in N) or ``"cylinder"`` (load in
     N/m, plane strain, the half-width) on an elastic half-space of Young's ``modulus`` (Pa)."""
-    e_star = modulus / (1 - nu ** 2)
+    e_star = modulus / (1 - nu**2)
     if kind == "sphere":
         return (3 * load * radius / (4 * e_star)) ** (1 / 3)
     return math.sqrt(4 * load * radius / (math.pi * e_star))
@@ -30,11 +31,12 @@ def hertz_radius(kind, *, modulus, nu, radius, load):
 def describe_xi(scene):
     """Lines for the console: tau and its origin, the length in xi, the speed range."""
     v, xi = scene.speeds, scene.xi
-    length = "the relaxed Hertz contact radius a0" if scene.xi_length != scene.surface.length else \
-        "the cell length L"
-    return [f"xi = v tau / l with tau = {scene.xi_time:.4g} s ({scene.xi_time_source}) and "
-            f"l = {scene.xi_length * 1e3:.4g} mm ({length})",
-            f"xi = {xi.min():.3g} .. {xi.max():.3g} is v = {v.min():.3g} .. {v.max():.3g} m/s"]
+    length = "the relaxed Hertz contact radius a0" if scene.xi_length != scene.surface.length else "the cell length L"
+    return [
+        f"xi = v tau / l with tau = {scene.xi_time:.4g} s ({scene.xi_time_source}) and "
+        f"l = {scene.xi_length * 1e3:.4g} mm ({length})",
+        f"xi = {xi.min():.3g} .. {xi.max():.3g} is v = {v.min():.3g} .. {v.max():.3g} m/s",
+    ]
 
 
 def points_per_wavelength(raw_surface, n):
@@ -55,14 +57,17 @@ def resolution_warnings(raw_surface, n, minimum):
     if ppw is None or ppw >= minimum:
         return []
     need = math.ceil(n * minimum / ppw)
-    return [f"the grid has {ppw:.3g} points per shortest wavelength of the surface (n = {n}); below "
-            f"{minimum}, contact spots are not resolved and friction and contact area are not converged "
-            f"(the dissipation and eq. 6 friction forms drift apart). Raise [surface] n to at least {need} "
-            f"or lower [surface] scales."]
+    return [
+        f"the grid has {ppw:.3g} points per shortest wavelength of the surface (n = {n}); below "
+        f"{minimum}, contact spots are not resolved and friction and contact area are not converged "
+        f"(the dissipation and eq. 6 friction forms drift apart). Raise [surface] n to at least {need} "
+        f"or lower [surface] scales."
+    ]
 
 
-def friction_form_warnings(curves, tolerance=FORM_TOLERANCE, advice="Raise [surface] n (or lower [surface] "
-                           "scales) until they agree."):
+def friction_form_warnings(
+    curves, tolerance=FORM_TOLERANCE, advice="Raise [surface] n (or lower [surface] scales) until they agree."
+):
     """A warning per load whose two friction forms differ by more than ``tolerance`` (relative)."""
     out = []
     for curve in curves:
@@ -77,9 +82,11 @@ def friction_form_warnings(curves, tolerance=FORM_TOLERANCE, advice="Raise [surf
         if bad.size == 0:
             continue
         worst = int(bad[np.argmax(rel[bad])])
-        out.append(f"at load {curve['load']:g}, the two friction forms (dissipation and eq. 6) differ by more "
-                   f"than {100 * tolerance:g} % at {bad.size} of {mu.size} speeds (worst {100 * rel[worst]:.3g} % "
-                   f"at xi = {curve['xi'][worst]:.3g}): the grid does not resolve the contact. {advice}")
+        out.append(
+            f"at load {curve['load']:g}, the two friction forms (dissipation and eq. 6) differ by more "
+            f"than {100 * tolerance:g} % at {bad.size} of {mu.size} speeds (worst {100 * rel[worst]:.3g} % "
+            f"at xi = {curve['xi'][worst]:.3g}): the grid does not resolve the contact. {advice}"
+        )
     return out
 
 
@@ -99,7 +106,9 @@ def peak_warnings(curves, xi_time_source):
         if 0 < top < mu.size - 1:
             continue
         side, key = ("highest", "stop") if top == mu.size - 1 else ("lowest", "start")
-        out.append(f"at load {curve['load']:g}, friction is largest at the {side} speed of the sweep (xi = "
-                   f"{xi[top]:.3g}): the friction peak lies outside the xi range. Extend [loading] xi.{key} "
-                   f"(tau is {xi_time_source}).")
+        out.append(
+            f"at load {curve['load']:g}, friction is largest at the {side} speed of the sweep (xi = "
+            f"{xi[top]:.3g}): the friction peak lies outside the xi range. Extend [loading] xi.{key} "
+            f"(tau is {xi_time_source})."
+        )
     return out

@@ -8,6 +8,7 @@ interpreter, and the import time alone (``python -X importtime``: the cumulative
 the top-level imports, without the interpreter's start-up and ``site``), which is less
 sensitive to a loaded machine. Writes ``DIR/import_bench.json``.
 """
+
 import json
 import subprocess
 import sys
@@ -38,8 +39,9 @@ def import_time(statement, repeats):
     """Shortest total import time (s) of ``statement``'s top-level imports (``-X importtime``)."""
     best = float("inf")
     for _ in range(repeats):
-        proc = subprocess.run([sys.executable, "-X", "importtime", "-c", statement], check=True,
-                              capture_output=True, text=True)
+        proc = subprocess.run(
+            [sys.executable, "-X", "importtime", "-c", statement], check=True, capture_output=True, text=True
+        )
         total = 0
         for line in proc.stderr.splitlines():
             fields = line.split("|")
@@ -56,13 +58,23 @@ def run(out_dir="bench-out", repeats=7, echo=print):
     seconds = {name: time_statement(code, repeats) for name, code in STATEMENTS.items()}
     imports = {name: import_time(code, repeats) for name, code in STATEMENTS.items()}
     key = "reference (numpy + scipy.fft + scipy.sparse.linalg)"
-    rows = [{"what": name, "statement": STATEMENTS[name], "seconds": t, "ratio_to_reference": t / seconds[key],
-             "import_seconds": imports[name], "import_ratio_to_reference": imports[name] / imports[key]}
-            for name, t in seconds.items()]
+    rows = [
+        {
+            "what": name,
+            "statement": STATEMENTS[name],
+            "seconds": t,
+            "ratio_to_reference": t / seconds[key],
+            "import_seconds": imports[name],
+            "import_ratio_to_reference": imports[name] / imports[key],
+        }
+        for name, t in seconds.items()
+    ]
     echo(f"{'what':54s} {'wall (s)':>9} {'/ ref':>6} {'imports (s)':>12} {'/ ref':>6}")
     for row in rows:
-        echo(f"{row['what']:54s} {row['seconds']:9.3f} {row['ratio_to_reference']:6.2f} "
-             f"{row['import_seconds']:12.3f} {row['import_ratio_to_reference']:6.2f}")
+        echo(
+            f"{row['what']:54s} {row['seconds']:9.3f} {row['ratio_to_reference']:6.2f} "
+            f"{row['import_seconds']:12.3f} {row['import_ratio_to_reference']:6.2f}"
+        )
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     record = {"repeats": repeats, "python": sys.version.split()[0], "rows": rows}

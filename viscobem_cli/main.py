@@ -15,6 +15,7 @@ and exits with status 2; so does a missing optional package (the line names the 
 to install). A sweep with points that did not converge exits with 1, and so does a
 validation run in which any case misses a tolerance or a baseline.
 """
+
 import argparse
 import sys
 from pathlib import Path
@@ -37,15 +38,16 @@ def _cmd_run(args):
     if scene.outputs["vtk"]:
         require("pyvista")
     print(f"viscobem run: {scene.title}")
-    print(f"  surface {scene.surface.shape} on {scene.surface.length} m x {len(scene.realisations)} "
-          f"realisation(s), load {', '.join(f'{x:g}' for x in scene.loads)} N, "
-          f"{scene.speeds.size} speeds; writing to {args.out}")
+    print(
+        f"  surface {scene.surface.shape} on {scene.surface.length} m x {len(scene.realisations)} "
+        f"realisation(s), load {', '.join(f'{x:g}' for x in scene.loads)} N, "
+        f"{scene.speeds.size} speeds; writing to {args.out}"
+    )
     for line in scenes.describe_xi(scene):
         print(f"  {line}")
     for text in scene.warnings:
         print(f"  WARNING: {text}")
-    record = run_scene(scene, args.out, progress=not args.no_progress, scheduler=args.scheduler,
-                       workers=args.workers)
+    record = run_scene(scene, args.out, progress=not args.no_progress, scheduler=args.scheduler, workers=args.workers)
     if record["resumed_points"]:
         print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
     if "temperature_sweep" in record:  # a sweep per temperature: the table of mu(v, T) first
@@ -54,7 +56,7 @@ def _cmd_run(args):
         print(summary(record))
         print(f"  at {record['friction_curve_temperature']:g} K:")
     _print_curve(record["friction_curve"], record["surface"].get("hertz_radius_relaxed", [None])[0])
-    for text in record["warnings"][len(scene.warnings):]:
+    for text in record["warnings"][len(scene.warnings) :]:
         print(f"  WARNING: {text}")
     print(f"  total {record['stages']['total']:.1f} s; files: {', '.join(record['files'])}")
     return 0 if record["all_converged"] else 1
@@ -74,8 +76,10 @@ def _print_curve(curve, a0=None):
             contact = f"{a * 1e3:7.4f} {a / a0:5.3f}"
         else:
             contact = f"{100 * curve['contact_fraction'][i]:9.3f}"
-        print(f"  {xi:10.3e} {curve['speed'][i]:12.4e} {curve['friction'][i]:10.5f} "
-              f"{'' if se is None else f'{se:9.5f}':>9} {contact:>13} {curve['iterations'][i]:6d}")
+        print(
+            f"  {xi:10.3e} {curve['speed'][i]:12.4e} {curve['friction'][i]:10.5f} "
+            f"{'' if se is None else f'{se:9.5f}':>9} {contact:>13} {curve['iterations'][i]:6d}"
+        )
 
 
 def _cmd_scene(args):
@@ -120,16 +124,17 @@ def _cmd_validate(args):
 
     names = select(args.case or [])
     if args.update_baselines and (not args.quick or args.case):
-        raise InputError("--update-baselines needs --quick and every case (no --case): the baseline file "
-                         "holds the whole quick set")
+        raise InputError(
+            "--update-baselines needs --quick and every case (no --case): the baseline file holds the whole quick set"
+        )
     baseline_path = args.baseline or baselines.DEFAULT
     compare_with = args.quick and not (args.update_baselines or args.no_baseline)
     if compare_with and not Path(baseline_path).exists():
-        raise InputError(f"baseline {baseline_path} does not exist; pass --no-baseline or create it with "
-                         f"--update-baselines")
+        raise InputError(
+            f"baseline {baseline_path} does not exist; pass --no-baseline or create it with --update-baselines"
+        )
     print(f"viscobem validate: {len(names)} case(s), {'quick' if args.quick else 'full'} set; writing to {args.out}")
-    record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk,
-                       progress=not args.no_progress)
+    record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk, progress=not args.no_progress)
     summary = record["summary"]
     if args.sensitivity:
         from validation.sensitivity import attach
@@ -141,13 +146,17 @@ def _cmd_validate(args):
     paths = write_reports(record, args.out, comparison, with_plots=not args.no_plots)
     for name, case in record["cases"].items():
         judged = [k for k in case["checks"] if k["judged"]]
-        print(f"  {name:24s} {case['status'].upper():6s} {sum(k['passed'] for k in judged):3d}/{len(judged):<3d} "
-              f"checks  {case['seconds']:7.1f} s")
+        print(
+            f"  {name:24s} {case['status'].upper():6s} {sum(k['passed'] for k in judged):3d}/{len(judged):<3d} "
+            f"checks  {case['seconds']:7.1f} s"
+        )
         if case["status"] == "error":
             print(f"      {case['error']}")
     for k in summary["failed_checks"]:
-        print(f"  FAIL {k['case']}: {k['solver']} {k['metric']} at {k['label']} = {k['value']:.3g} "
-              f"> {k['tolerance']:.3g} ({k['why']})")
+        print(
+            f"  FAIL {k['case']}: {k['solver']} {k['metric']} at {k['label']} = {k['value']:.3g} "
+            f"> {k['tolerance']:.3g} ({k['why']})"
+        )
     status = 0 if not summary["failed"] else 1
     if args.sensitivity:
         from validation.sensitivity import print_summary
@@ -155,12 +164,16 @@ def _cmd_validate(args):
         status = print_summary(record) or status
     if comparison is not None:
         for r in comparison["regressions"]:
-            print(f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
-                  f"(allowed +-{r['allowed']:.3g})")
+            print(
+                f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
+                f"(allowed +-{r['allowed']:.3g})"
+            )
         if comparison["missing"]:
             first = comparison["missing"][0]["key"]
-            print(f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
-                  f"regenerate with: viscobem validate --quick --update-baselines --out DIR")
+            print(
+                f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
+                f"regenerate with: viscobem validate --quick --update-baselines --out DIR"
+            )
         print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
         status = status or (0 if comparison["ok"] else 1)
     if args.update_baselines:
@@ -169,8 +182,10 @@ def _cmd_validate(args):
         else:
             command = "viscobem validate --quick --update-baselines --out " + str(args.out)
             print(f"  baselines written to {baselines.write(record, baseline_path, command)}")
-    print(f"  {summary['passed']}/{summary['cases']} cases passed in {record['seconds']:.1f} s; "
-          f"reports: {', '.join(str(p) for p in paths)}")
+    print(
+        f"  {summary['passed']}/{summary['cases']} cases passed in {record['seconds']:.1f} s; "
+        f"reports: {', '.join(str(p) for p in paths)}"
+    )
     return status
 
 
@@ -196,34 +211,52 @@ class _Version(argparse.Action):
 
 def build_parser():
     names = ", ".join(builtin_scenes())
-    parser = argparse.ArgumentParser(prog="viscobem", description=__doc__.split("\n\n")[0],
-                                     epilog=f"built-in scenes: {names}. Start with: viscobem scene > my.toml")
+    parser = argparse.ArgumentParser(
+        prog="viscobem",
+        description=__doc__.split("\n\n")[0],
+        epilog=f"built-in scenes: {names}. Start with: viscobem scene > my.toml",
+    )
     parser.add_argument("--version", action=_Version, help="print the version and exit")
     parser.add_argument("-v", "--verbose", action="store_true", help="log solver progress")
     sub = parser.add_subparsers(dest="command", required=True)
-    run = sub.add_parser("run", help=f"run a scene (default: the seed paper's study; built-in: {names})",
-                         epilog=f"built-in scenes: {names}")
-    run.add_argument("scene", nargs="?", default=None,
-                     help=f"scene TOML file or the name of a built-in scene ({names})")
+    run = sub.add_parser(
+        "run",
+        help=f"run a scene (default: the seed paper's study; built-in: {names})",
+        epilog=f"built-in scenes: {names}",
+    )
+    run.add_argument(
+        "scene", nargs="?", default=None, help=f"scene TOML file or the name of a built-in scene ({names})"
+    )
     run.add_argument("--out", default="viscobem-out", help="output folder (default: viscobem-out)")
-    run.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                     help="override a scene key, e.g. --set surface.n=64 --set loading.xi.num=5 "
-                          "(VALUE in TOML syntax; repeatable)")
+    run.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a scene key, e.g. --set surface.n=64 --set loading.xi.num=5 (VALUE in TOML syntax; repeatable)",
+    )
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
     run.add_argument("--workers", type=int, default=None, help="processes (overrides [solver] workers)")
-    run.add_argument("--scheduler", default=None,
-                     help="dask.distributed scheduler address, e.g. tcp://host:8786 (overrides [solver] "
-                          "scheduler; needs pip install \"viscobem[dask]\")")
+    run.add_argument(
+        "--scheduler",
+        default=None,
+        help="dask.distributed scheduler address, e.g. tcp://host:8786 (overrides [solver] "
+        'scheduler; needs pip install "viscobem[dask]")',
+    )
     run.set_defaults(func=_cmd_run)
     scene = sub.add_parser("scene", help=f"print a built-in scene ({names}; default: the template)")
     scene.add_argument("name", nargs="?", default=None, help=f"built-in scene: {names}")
     scene.set_defaults(func=_cmd_scene)
     bench = sub.add_parser("bench", help="run a benchmark (writes only under --out)")
-    bench.add_argument("name", nargs="?", default="all",
-                       choices=["all", "periodic", "fem", "isolated", "rubber_speeds", "import", "materials"],
-                       help="all (default: every solver, scaling, skipping), one detailed benchmark, "
-                            "import (import time of bem against numpy + scipy), or materials (Prony fits "
-                            "and master curves against pyvisco)")
+    bench.add_argument(
+        "name",
+        nargs="?",
+        default="all",
+        choices=["all", "periodic", "fem", "isolated", "rubber_speeds", "import", "materials"],
+        help="all (default: every solver, scaling, skipping), one detailed benchmark, "
+        "import (import time of bem against numpy + scipy), or materials (Prony fits "
+        "and master curves against pyvisco)",
+    )
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)
@@ -236,11 +269,15 @@ def build_parser():
     val.add_argument("--no-plots", action="store_true", help="report.html without figures (faster)")
     val.add_argument("--baseline", default=None, help="baseline file (default: validation/baselines/quick.json)")
     val.add_argument("--no-baseline", action="store_true", help="with --quick: do not compare with the baselines")
-    val.add_argument("--update-baselines", action="store_true",
-                     help="with --quick: store this run's numbers as the new baselines")
-    val.add_argument("--sensitivity", action="store_true",
-                     help="rerun each case with deliberately wrong inputs (moduli, times, speed, load) and "
-                          "report which checks catch them (report.json['sensitivity'])")
+    val.add_argument(
+        "--update-baselines", action="store_true", help="with --quick: store this run's numbers as the new baselines"
+    )
+    val.add_argument(
+        "--sensitivity",
+        action="store_true",
+        help="rerun each case with deliberately wrong inputs (moduli, times, speed, load) and "
+        "report which checks catch them (report.json['sensitivity'])",
+    )
     val.set_defaults(func=_cmd_validate)
     return parser
 
@@ -249,8 +286,9 @@ def main(argv=None):
     args = build_parser().parse_args(argv)
     import logging
 
-    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
-                        format="%(levelname)s %(name)s: %(message)s")
+    logging.basicConfig(
+        level=logging.INFO if args.verbose else logging.WARNING, format="%(levelname)s %(name)s: %(message)s"
+    )
     try:
         return args.func(args)
     except InputError as err:
@@ -270,8 +308,7 @@ def main(argv=None):
         print(f"viscobem: did not converge: {err}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
-        print("viscobem: interrupted; the finished points are kept: rerun the same command to resume",
-              file=sys.stderr)
+        print("viscobem: interrupted; the finished points are kept: rerun the same command to resume", file=sys.stderr)
         return 130
 
 

@@ -19,6 +19,7 @@ format and units, and the PSD report (the measurement's radially averaged PSD be
 grid's wavevector range, rms heights and slopes, variance lost above the grid's Nyquist);
 with plots on, ``measured_psd.png`` shows it.
 """
+
 import numpy as np
 
 from bem import measured, measured_grid
@@ -33,8 +34,10 @@ def surface(t, base):
     """The solver surface of a ``kind = "measured"`` table (with its PSD report in metadata)."""
     extra = sorted(set(t) - KEYS - {"kind"})
     if extra:
-        raise InputError(f"[surface] key(s) {', '.join(map(repr, extra))} do not apply to kind = 'measured'; "
-                         f"its keys: {', '.join(sorted(KEYS))}")
+        raise InputError(
+            f"[surface] key(s) {', '.join(map(repr, extra))} do not apply to kind = 'measured'; "
+            f"its keys: {', '.join(sorted(KEYS))}"
+        )
     for key in ("path", "n"):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = 'measured'")
@@ -43,11 +46,11 @@ def surface(t, base):
     size = t.get("scan_size")
     if size is not None and not (isinstance(size, list) and all(isinstance(v, (int, float)) for v in size)):
         raise InputError(f"[surface] scan_size must be a list of sizes (in unit) per axis, got {size!r}")
-    m = measured.read_topography(base / t["path"], unit=t.get("unit"), physical_sizes=size,
-                                 channel=t.get("channel", 0))
+    m = measured.read_topography(base / t["path"], unit=t.get("unit"), physical_sizes=size, channel=t.get("channel", 0))
     m = measured.detrend(m, t.get("detrend", "plane"))
-    s = measured_grid.to_surface(m, t["n"], boundary=t.get("boundary", "isolated"), window=t.get("window", "tukey"),
-                                 alpha=t.get("alpha", 0.25))
+    s = measured_grid.to_surface(
+        m, t["n"], boundary=t.get("boundary", "isolated"), window=t.get("window", "tukey"), alpha=t.get("alpha", 0.25)
+    )
     meta = dict(s.metadata)
     meta["measured"] = {**dict(s.metadata["measured"]), "psd": measured_grid.psd_report(m, s)}
     return type(s)(s.heights, s.length, name=s.name, centered=s.centered, metadata=meta)
@@ -58,8 +61,10 @@ def periodic(t, solver):
     want = t.get("boundary", "isolated") == "periodic"
     given = solver.get("periodic", want)
     if given != want:
-        raise InputError(f"[solver] periodic = {str(given).lower()} contradicts [surface] boundary = "
-                         f"{t.get('boundary', 'isolated')!r}; leave periodic out")
+        raise InputError(
+            f"[solver] periodic = {str(given).lower()} contradicts [surface] boundary = "
+            f"{t.get('boundary', 'isolated')!r}; leave periodic out"
+        )
     return want
 
 
@@ -98,9 +103,12 @@ def psd_plot(rec, path):
     ax.set_xlabel("q (rad/m)")
     ax.set_ylabel("C(q) (m^4)" if len(rec["pixel_sizes"]) == 2 else "C(q) (m^3)")
     lost = psd["variance_above_grid_nyquist"]
-    ax.set_title(f"{rec['boundary']}"
-                 + (f", window {rec.get('window')}" if rec["boundary"] == "periodic" else "")
-                 + f"; rms slope {psd['rms_slope_measurement']:.3g} scan, {psd['rms_slope_grid']:.3g} grid; "
-                 f"{100 * lost:.2g} % of variance above cut-off", fontsize=8)
+    ax.set_title(
+        f"{rec['boundary']}"
+        + (f", window {rec.get('window')}" if rec["boundary"] == "periodic" else "")
+        + f"; rms slope {psd['rms_slope_measurement']:.3g} scan, {psd['rms_slope_grid']:.3g} grid; "
+        f"{100 * lost:.2g} % of variance above cut-off",
+        fontsize=8,
+    )
     ax.legend(fontsize=7)
     _save(fig, path)

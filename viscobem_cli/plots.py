@@ -7,6 +7,7 @@ plots of m2(theta) and the contact-PSD contour with its fitted ellipse, and the 
 measures against xi. Maps are drawn at ``[analysis] plot_xi`` (nearest sweep point) or at
 the friction peak.
 """
+
 from pathlib import Path
 
 import numpy as np
@@ -42,14 +43,27 @@ def _sliding_arrow(ax, direction=0.0):
     """The sliding direction (radians from +x) as an arrow above the map."""
     c, s = np.cos(direction), np.sin(direction)
     if direction == 0:
-        ax.annotate("", xy=(0.9, 1.04), xytext=(0.6, 1.04), xycoords="axes fraction",
-                    arrowprops={"arrowstyle": "->", "lw": 2})
+        ax.annotate(
+            "", xy=(0.9, 1.04), xytext=(0.6, 1.04), xycoords="axes fraction", arrowprops={"arrowstyle": "->", "lw": 2}
+        )
         ax.text(0.58, 1.04, "sliding (+x)", transform=ax.transAxes, ha="right", va="center", fontsize=8)
         return
-    ax.annotate("", xy=(0.9 + 0.045 * c, 1.04 + 0.045 * s), xytext=(0.9 - 0.045 * c, 1.04 - 0.045 * s),
-                xycoords="axes fraction", arrowprops={"arrowstyle": "->", "lw": 2})
-    ax.text(0.0, 1.04, f"sliding {np.degrees(direction):.4g}° from +x", transform=ax.transAxes, ha="left",
-            va="center", fontsize=8)
+    ax.annotate(
+        "",
+        xy=(0.9 + 0.045 * c, 1.04 + 0.045 * s),
+        xytext=(0.9 - 0.045 * c, 1.04 - 0.045 * s),
+        xycoords="axes fraction",
+        arrowprops={"arrowstyle": "->", "lw": 2},
+    )
+    ax.text(
+        0.0,
+        1.04,
+        f"sliding {np.degrees(direction):.4g}° from +x",
+        transform=ax.transAxes,
+        ha="left",
+        va="center",
+        fontsize=8,
+    )
 
 
 def _mark_peak(ax, xi, peak):
@@ -90,11 +104,30 @@ def friction_curve(scene, record, path):
         for k, curve in enumerate(record["curves"]):
             tag = f" ({curve['load']:g} N)" if len(record["curves"]) > 1 else ""
             mu, se = _arr(curve["friction"]), _arr(curve["friction_se"])
-            ax.errorbar(xi, mu, yerr=None if np.all(np.isnan(se)) else se, fmt="o-", ms=5, capsize=2, lw=1.5,
-                        label=r"$\mu$, dissipation form" + tag, zorder=2)
+            ax.errorbar(
+                xi,
+                mu,
+                yerr=None if np.all(np.isnan(se)) else se,
+                fmt="o-",
+                ms=5,
+                capsize=2,
+                lw=1.5,
+                label=r"$\mu$, dissipation form" + tag,
+                zorder=2,
+            )
             if k == 0:  # drawn on top, dashed with open markers: visible where the forms coincide
-                ax.plot(xi, _arr(curve["friction_eq6"]), "s--", ms=6, mfc="none", mew=1.2, lw=1.2,
-                        color="C3", label=r"$\mu$, eq. 6 ($-\int p\,\partial h/\partial x$)", zorder=3)
+                ax.plot(
+                    xi,
+                    _arr(curve["friction_eq6"]),
+                    "s--",
+                    ms=6,
+                    mfc="none",
+                    mew=1.2,
+                    lw=1.2,
+                    color="C3",
+                    label=r"$\mu$, eq. 6 ($-\int p\,\partial h/\partial x$)",
+                    zorder=3,
+                )
         for row in record.get("persson", []):
             ax.plot(xi, row["friction"], "k-", lw=1.2, label=f"Persson (2001), {row['pressure']:.3g} Pa")
         ax.set_xscale("log")
@@ -110,8 +143,7 @@ def friction_curve(scene, record, path):
     k = len(scene.realisations)
     import textwrap
 
-    fig.suptitle(textwrap.fill(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), 110),
-                 fontsize=9)
+    fig.suptitle(textwrap.fill(scene.title + (f"  ({k} realisations, mean ± s.e.)" if k > 1 else ""), 110), fontsize=9)
     _save(fig, path)
 
 
@@ -126,8 +158,15 @@ def contact_area(scene, record, path):
         key = "contact_radius" if indenter else "contact_fraction"
         scale = 1e3 if indenter else 100.0
         a, se = _arr(curve[key]) * scale, _arr(curve[key + "_se"]) * scale
-        ax.errorbar(xi, a, yerr=None if np.all(np.isnan(se)) else se, fmt="^-", ms=5, capsize=2,
-                    label=f"BEM, {curve['load']:g} N")
+        ax.errorbar(
+            xi,
+            a,
+            yerr=None if np.all(np.isnan(se)) else se,
+            fmt="^-",
+            ms=5,
+            capsize=2,
+            label=f"BEM, {curve['load']:g} N",
+        )
     for row in record.get("persson", []):
         ax.plot(xi, 100 * np.asarray(row["contact_fraction"], dtype=float), "k-", lw=1.2, label="Persson P(q1)")
     ax.set_xscale("log")
@@ -165,11 +204,13 @@ def field_map(surface, field, xi, path, *, label, cmap, title, scale=1.0, discre
         if discrete is not None:
             from matplotlib.colors import BoundaryNorm, ListedColormap
 
-            cmap = ListedColormap(["white", "black"]) if len(discrete) == 2 else _pyplot().get_cmap("tab10",
-                                                                                                   len(discrete))
+            cmap = (
+                ListedColormap(["white", "black"]) if len(discrete) == 2 else _pyplot().get_cmap("tab10", len(discrete))
+            )
             norm = BoundaryNorm(np.arange(len(discrete) + 1) - 0.5, len(discrete))
-        im = ax.imshow(np.asarray(field).T * scale, origin="lower", extent=ext, cmap=cmap, norm=norm,
-                       interpolation="nearest")
+        im = ax.imshow(
+            np.asarray(field).T * scale, origin="lower", extent=ext, cmap=cmap, norm=norm, interpolation="nearest"
+        )
         bar = fig.colorbar(im, ax=ax, label=label, ticks=None if discrete is None else range(len(discrete)))
         if discrete is not None:
             bar.ax.set_yticklabels(discrete)
@@ -191,16 +232,16 @@ def deformed_surface(surface, f, xi, path, *, periodic=True, direction=0.0):
     x = surface.x * 1e3
     if surface.ndim == 2:
         row = int(np.argmax(np.count_nonzero(np.asarray(f.pressure) > 0, axis=0)))
-        fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 8.0), constrained_layout=True,
-                                          gridspec_kw={"height_ratios": [1.4, 1]})
+        fig, (top, bottom) = plt.subplots(
+            2, 1, figsize=(6.4, 8.0), constrained_layout=True, gridspec_kw={"height_ratios": [1.4, 1]}
+        )
         ext = [0, surface.length * 1e3, 0, surface.length * 1e3]
         im = top.imshow(gap.T, origin="lower", extent=ext, cmap="viridis", interpolation="nearest")
         fig.colorbar(im, ax=top, label="separation (µm); 0 in contact")
         top.axhline(surface.x[row] * 1e3, color="w", lw=0.8, ls="--")
         top.set_xlabel("x (mm)")
         top.set_ylabel("y (mm)")
-        top.set_title(rf"$\xi$ = {xi:.3g}: gap between the rigid surface and the deformed solid", fontsize=9,
-                      pad=18)
+        top.set_title(rf"$\xi$ = {xi:.3g}: gap between the rigid surface and the deformed solid", fontsize=9, pad=18)
         _sliding_arrow(top, direction)
         touch = np.asarray(f.pressure)[:, row] > 0
         rigid, solid, where = rigid[:, row], solid[:, row], f" at y = {surface.x[row] * 1e3:.3g} mm (dashed)"
@@ -235,8 +276,13 @@ def polar_m2(scene, record, l, i, path):
             continue
         m = moments_from_tensor(*(np.mean([d[k] for d in ms]) for k in ("m20", "m02", "m11")))
         r = m.m2(theta) / m.m2_max
-        ax.plot(theta, r, style, label=rf"$\xi$ = {scene.xi[idx]:.3g} {name}: $\gamma$ = {m.gamma:.3f}, "
-                                      rf"$\Theta$ = {np.degrees(m.theta_max):.0f}°")
+        ax.plot(
+            theta,
+            r,
+            style,
+            label=rf"$\xi$ = {scene.xi[idx]:.3g} {name}: $\gamma$ = {m.gamma:.3f}, "
+            rf"$\Theta$ = {np.degrees(m.theta_max):.0f}°",
+        )
     ax.set_title(r"$m_2(\theta) / \max m_2$ of the deformed surface (sliding along $\theta = 0$)", fontsize=9)
     ax.legend(fontsize=7, loc="lower center", bbox_to_anchor=(0.5, -0.22))
     _save(fig, path)
@@ -257,8 +303,13 @@ def psd_contour(scene, cpsd, ellipse, xi, path):
     t = np.linspace(0, 2 * np.pi, 200)
     vals, vecs = np.linalg.eigh(np.array([[ellipse.A, ellipse.B], [ellipse.B, ellipse.D]]))
     pts = vecs @ np.vstack([np.cos(t) / np.sqrt(vals[0]), np.sin(t) / np.sqrt(vals[1])]) / qL
-    ax.plot(pts[0], pts[1], "r--", lw=1.2, label=f"ellipse: aspect {ellipse.aspect_ratio:.3f}, "
-                                                    f"q_x/q_y extent {ellipse.stretch_x:.3f}")
+    ax.plot(
+        pts[0],
+        pts[1],
+        "r--",
+        lw=1.2,
+        label=f"ellipse: aspect {ellipse.aspect_ratio:.3f}, q_x/q_y extent {ellipse.stretch_x:.3f}",
+    )
     ax.set_aspect("equal")
     ax.set_xlabel(r"$q_x / q_L$ (sliding direction)")
     ax.set_ylabel(r"$q_y / q_L$")
@@ -274,16 +325,34 @@ def anisotropy_vs_xi(scene, record, path, peak):
     xi = np.asarray(scene.xi)
     if "anisotropy" in record:
         a = record["anisotropy"][0]
-        ax.errorbar(xi, _arr(a["gamma"]), yerr=_arr(a["gamma_se"]), fmt="o-", ms=4, capsize=2,
-                    label=r"$\gamma$ of the deformed surface")
-        ax.errorbar(xi, _arr(a["gamma_relative"]), yerr=_arr(a["gamma_relative_se"]), fmt="s-", ms=4,
-                    capsize=2, label=r"$\gamma$ relative to the lowest-speed surface")
+        ax.errorbar(
+            xi,
+            _arr(a["gamma"]),
+            yerr=_arr(a["gamma_se"]),
+            fmt="o-",
+            ms=4,
+            capsize=2,
+            label=r"$\gamma$ of the deformed surface",
+        )
+        ax.errorbar(
+            xi,
+            _arr(a["gamma_relative"]),
+            yerr=_arr(a["gamma_relative_se"]),
+            fmt="s-",
+            ms=4,
+            capsize=2,
+            label=r"$\gamma$ relative to the lowest-speed surface",
+        )
     if "contact_psd" in record:
         c = record["contact_psd"][0]
-        ax.plot(xi, 1 / _arr(c["stretch_x"]), "^-", ms=4,
-                label=r"$C_\chi$ contour: extent $q_y/q_x$")
-        ax.plot(xi, 1 / _arr(c["stretch_x_relative"]), "v-", ms=4,
-                label=r"$C_\chi$ contour: $q_y/q_x$ relative to the lowest speed")
+        ax.plot(xi, 1 / _arr(c["stretch_x"]), "^-", ms=4, label=r"$C_\chi$ contour: extent $q_y/q_x$")
+        ax.plot(
+            xi,
+            1 / _arr(c["stretch_x_relative"]),
+            "v-",
+            ms=4,
+            label=r"$C_\chi$ contour: $q_y/q_x$ relative to the lowest speed",
+        )
     _mark_peak(ax, xi, peak)
     ax.set_xscale("log")
     ax.set_xlabel(r"$\xi = v\,\tau / L$  (dotted: friction peak)")
@@ -330,8 +399,7 @@ def indenter_maps(scene, fields, out):
         _save(fig, out / "pressure_profiles.png")
         return ["pressure_profiles.png"]
     ext = [x[0] - surface.spacing * 5e2, x[-1] + surface.spacing * 5e2] * 2
-    fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.0), constrained_layout=True,
-                             squeeze=False)
+    fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.0), constrained_layout=True, squeeze=False)
     for ax, k in zip(axes[0], picks):
         r = fields[k]
         im = ax.imshow(r.pressure.T / 1e6, origin="lower", extent=ext, cmap="magma", interpolation="nearest")
@@ -346,8 +414,12 @@ def indenter_maps(scene, fields, out):
     colours = plt.cm.viridis(np.linspace(0, 1, len(keys)))
     for c, k in zip(colours, keys):
         ax.contour(x, x, (fields[k].pressure > 0).T.astype(float), levels=[0.5], colors=[c], linewidths=1.0)
-    sm = plt.cm.ScalarMappable(cmap="viridis", norm=plt.matplotlib.colors.LogNorm(
-        vmin=scene.xi[keys[0]], vmax=max(scene.xi[keys[-1]], scene.xi[keys[0]] * 1.0001)))
+    sm = plt.cm.ScalarMappable(
+        cmap="viridis",
+        norm=plt.matplotlib.colors.LogNorm(
+            vmin=scene.xi[keys[0]], vmax=max(scene.xi[keys[-1]], scene.xi[keys[0]] * 1.0001)
+        ),
+    )
     fig.colorbar(sm, ax=ax, label=r"$\xi = v\,\tau / L$")
     ax.set_aspect("equal")
     ax.set_xlabel("x (mm), sliding toward +x")
@@ -373,14 +445,31 @@ def write_all(scene, record, fields, extras, out):
     elif fields:
         j = i if i in fields else min(fields, key=lambda k: abs(k - i))
         f, x = fields[j], scene.xi[j]
-        field_map(scene.surface, f.pressure, x, out / "pressure_map.png", label="pressure (MPa)", cmap="magma",
-                  scale=1e-6, title=rf"$\mu$ = {f.friction:.4g}, contact {100 * f.contact_fraction:.2f} %",
-                  direction=scene.direction)
-        field_map(scene.surface, (f.pressure > 0).astype(int), x, out / "contact_map.png", label="", cmap=None,
-                  title=f"contact area {100 * f.contact_fraction:.2f} % (realisation 0)",
-                  discrete=["no contact", "contact"], direction=scene.direction)
-        deformed_surface(scene.surface, f, x, out / "deformed_surface.png", periodic=scene.periodic,
-                         direction=scene.direction)
+        field_map(
+            scene.surface,
+            f.pressure,
+            x,
+            out / "pressure_map.png",
+            label="pressure (MPa)",
+            cmap="magma",
+            scale=1e-6,
+            title=rf"$\mu$ = {f.friction:.4g}, contact {100 * f.contact_fraction:.2f} %",
+            direction=scene.direction,
+        )
+        field_map(
+            scene.surface,
+            (f.pressure > 0).astype(int),
+            x,
+            out / "contact_map.png",
+            label="",
+            cmap=None,
+            title=f"contact area {100 * f.contact_fraction:.2f} % (realisation 0)",
+            discrete=["no contact", "contact"],
+            direction=scene.direction,
+        )
+        deformed_surface(
+            scene.surface, f, x, out / "deformed_surface.png", periodic=scene.periodic, direction=scene.direction
+        )
         names += ["pressure_map.png", "contact_map.png", "deformed_surface.png"]
     if scene.outputs["anisotropy"]:
         polar_m2(scene, record, 0, i, out / "polar_m2.png")

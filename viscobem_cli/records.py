@@ -6,6 +6,7 @@ one realisation). Indenters (sphere, cylinder) report their contact radius (m) a
 (m², m for a cylinder's profile) per speed, the relaxed and glassy Hertz radii, and no
 roughness statistics (an indenter's rms height or slope depends only on the domain size).
 """
+
 import math
 
 import numpy as np
@@ -19,23 +20,38 @@ INDENTER_SCALARS = ["contact_radius", "contact_area"]
 
 
 def material_record(m):
-    return {"E0": m.E0, "E_inf": m.E_inf, "nu": m.nu, "prony_moduli": m.moduli.tolist(),
-            "relaxation_times": m.relaxation_times.tolist(), "creep_compliances": m.compliances.tolist(),
-            "creep_times": m.creep_times.tolist()}
+    return {
+        "E0": m.E0,
+        "E_inf": m.E_inf,
+        "nu": m.nu,
+        "prony_moduli": m.moduli.tolist(),
+        "relaxation_times": m.relaxation_times.tolist(),
+        "creep_compliances": m.compliances.tolist(),
+        "creep_times": m.creep_times.tolist(),
+    }
 
 
 def surface_record(scene):
     s = scene.surface
-    rec = {"kind": scene.kind, "n": s.n, "dim": s.ndim, "length": s.length, "spacing": s.spacing,
-           "max_height": float(s.heights.max()), "min_height": float(s.heights.min())}
+    rec = {
+        "kind": scene.kind,
+        "n": s.n,
+        "dim": s.ndim,
+        "length": s.length,
+        "spacing": s.spacing,
+        "max_height": float(s.heights.max()),
+        "min_height": float(s.heights.min()),
+    }
     if scene.kind not in ("sphere", "cylinder"):
         return {**rec, "rms_height": statistics.rms_height(s), "rms_slope": statistics.rms_slope(s)}
     radius, m = scene.raw["surface"]["radius"], scene.material
     rec["radius"] = radius
-    rec["hertz_radius_relaxed"] = [hertz_radius(scene.kind, modulus=m.E0, nu=m.nu, radius=radius, load=f)
-                                   for f in scene.loads]
-    rec["hertz_radius_glassy"] = [hertz_radius(scene.kind, modulus=m.E_inf, nu=m.nu, radius=radius, load=f)
-                                  for f in scene.loads]
+    rec["hertz_radius_relaxed"] = [
+        hertz_radius(scene.kind, modulus=m.E0, nu=m.nu, radius=radius, load=f) for f in scene.loads
+    ]
+    rec["hertz_radius_glassy"] = [
+        hertz_radius(scene.kind, modulus=m.E_inf, nu=m.nu, radius=radius, load=f) for f in scene.loads
+    ]
     return rec
 
 
@@ -55,8 +71,7 @@ def scalars(scene):
 def summarise_curve(scene, recs, l):
     """The friction curve of load ``l``: ensemble means and standard errors per speed."""
     n, k = scene.speeds.size, len(scene.realisations)
-    curve = {"load": scene.loads[l], "xi": scene.xi.tolist(), "speed": scene.speeds.tolist(),
-             "realisations": k}
+    curve = {"load": scene.loads[l], "xi": scene.xi.tolist(), "speed": scene.speeds.tolist(), "realisations": k}
     names = scalars(scene)
     for key in names:
         curve[key], curve[key + "_se"] = [None] * n, [None] * n
@@ -81,6 +96,21 @@ def summarise_curve(scene, recs, l):
 
 
 def point_list(scene, recs):
-    keep = ["r", "l", "i", "seed", "load", "speed", "xi", "success", "message", *scalars(scene), "iterations",
-            "residual", "wall_time", "times", "moments"]
+    keep = [
+        "r",
+        "l",
+        "i",
+        "seed",
+        "load",
+        "speed",
+        "xi",
+        "success",
+        "message",
+        *scalars(scene),
+        "iterations",
+        "residual",
+        "wall_time",
+        "times",
+        "moments",
+    ]
     return [{k: recs[key].get(k) for k in keep if k in recs[key]} for key in sorted(recs)]

@@ -35,6 +35,7 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
     [analysis]   contact_level (C_chi/C_chi(0) of the contour, 0.476), psd_smoothing (modes, 1.0),
                  plot_xi (xi of the maps, polar and PSD plots; default: the friction peak)
 """
+
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -48,8 +49,18 @@ from bem.errors import InputError
 from . import guidance, scene_values, temperatures
 from .catalog import SCENE_DIR, builtin_scenes, scene_path
 
-__all__ = ["Scene", "parse", "load", "describe_xi", "builtin_scenes", "SCENE_DIR", "DEFAULT_SCENE", "SCHEMA",
-           "SURFACE_KINDS", "INDENTER_KINDS"]
+__all__ = [
+    "Scene",
+    "parse",
+    "load",
+    "describe_xi",
+    "builtin_scenes",
+    "SCENE_DIR",
+    "DEFAULT_SCENE",
+    "SCHEMA",
+    "SURFACE_KINDS",
+    "INDENTER_KINDS",
+]
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -59,18 +70,53 @@ else:  # pragma: no cover
 # valid key names per section ("" = top level); each has a documented row in viscobem_cli.schema.KEYS
 SCHEMA = {
     "": {"title", "material", "surface", "loading", "solver", "outputs", "analysis"},
-    "material": {"nu", "E", "E0", "E_inf", "creep_time", "relaxation_time", "moduli", "times",
-                 "compliances", "dma", "dma_frequency_unit", "dma_terms_per_decade",
-                 "dma_modulus_unit", "dma_temperature_unit", "shift"},
-    "surface": {"kind", "length", "n", "hurst", "scales", "rms_height", "rms_slope", "seed",
-                "rolloff", "anisotropy", "dim", "amplitude", "wavelength", "direction", "path", "unit",
-                "realisations", "radius", "exact",
-                "detrend", "boundary", "window", "alpha", "scan_size", "channel"},  # kind = "measured"
+    "material": {
+        "nu",
+        "E",
+        "E0",
+        "E_inf",
+        "creep_time",
+        "relaxation_time",
+        "moduli",
+        "times",
+        "compliances",
+        "dma",
+        "dma_frequency_unit",
+        "dma_terms_per_decade",
+        "dma_modulus_unit",
+        "dma_temperature_unit",
+        "shift",
+    },
+    "surface": {
+        "kind",
+        "length",
+        "n",
+        "hurst",
+        "scales",
+        "rms_height",
+        "rms_slope",
+        "seed",
+        "rolloff",
+        "anisotropy",
+        "dim",
+        "amplitude",
+        "wavelength",
+        "direction",
+        "path",
+        "unit",
+        "realisations",
+        "radius",
+        "exact",
+        "detrend",
+        "boundary",
+        "window",
+        "alpha",
+        "scan_size",
+        "channel",
+    },  # kind = "measured"
     "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
-    "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic",
-               "method"},
-    "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson",
-                "fields_precision"},
+    "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic", "method"},
+    "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson", "fields_precision"},
     "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
 SURFACE_KINDS = ("self_affine", "sinusoid", "file", "sphere", "cylinder", "measured")
@@ -145,8 +191,10 @@ def _check_keys(table, section):
     unknown = sorted(set(table) - valid)
     if unknown:
         where = f"[{section}]" if section else "the top level"
-        raise InputError(f"unknown key(s) {', '.join(map(repr, unknown))} in {where} of the scene; "
-                         f"valid keys: {', '.join(sorted(valid))}")
+        raise InputError(
+            f"unknown key(s) {', '.join(map(repr, unknown))} in {where} of the scene; "
+            f"valid keys: {', '.join(sorted(valid))}"
+        )
 
 
 def _material(t, base):
@@ -155,17 +203,24 @@ def _material(t, base):
     markers = {"E": "E", "E_inf": "sls", "moduli": "prony", "compliances": "creep", "dma": "dma"}
     present = [kind for key, kind in markers.items() if key in t]
     if len(present) != 1:
-        raise InputError("[material] needs exactly one of: E | E0, E_inf, creep_time or relaxation_time "
-                         "| E0, moduli, times | E0, compliances, times | dma (file); got keys "
-                         f"{sorted(t)}")
+        raise InputError(
+            "[material] needs exactly one of: E | E0, E_inf, creep_time or relaxation_time "
+            "| E0, moduli, times | E0, compliances, times | dma (file); got keys "
+            f"{sorted(t)}"
+        )
     kind = present[0]
     if kind in ("sls", "prony", "creep") and "E0" not in t:
         raise InputError(f"[material] E0 (relaxed modulus, Pa) is required with {sorted(t)}")
     if kind == "E":
         return Material.elastic(t["E"], nu=nu)
     if kind == "sls":
-        return Material.standard_linear_solid(E0=t["E0"], E_inf=t["E_inf"], creep_time=t.get("creep_time"),
-                                              relaxation_time=t.get("relaxation_time"), nu=nu)
+        return Material.standard_linear_solid(
+            E0=t["E0"],
+            E_inf=t["E_inf"],
+            creep_time=t.get("creep_time"),
+            relaxation_time=t.get("relaxation_time"),
+            nu=nu,
+        )
     if kind == "prony":
         return Material.from_prony(E0=t["E0"], moduli=t["moduli"], times=t.get("times", []), nu=nu)
     if kind == "creep":
@@ -206,8 +261,7 @@ def _surface(t, base):
         make = surfaces.sphere if kind == "sphere" else surfaces.cylinder
         return (make(radius=t["radius"], n=t["n"], length=t["length"], exact=t.get("exact", False)),)
     if not isinstance(t.get("path"), str):
-        raise InputError(f"[surface] path (a file path string) is required for kind = 'file', got "
-                         f"{t.get('path')!r}")
+        raise InputError(f"[surface] path (a file path string) is required for kind = 'file', got {t.get('path')!r}")
     return (surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m")),)
 
 
@@ -232,8 +286,9 @@ def _speeds(t, tau, length):
         values = t["speeds"] if isinstance(t["speeds"], list) else [t["speeds"]]
         speeds = np.array([scene_values.number("loading", "speeds", v) for v in values], dtype=float)
         if speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-            raise InputError(f"[loading] speeds must be a non-empty list of finite speeds >= 0 m/s, "
-                             f"got {t['speeds']!r}")
+            raise InputError(
+                f"[loading] speeds must be a non-empty list of finite speeds >= 0 m/s, got {t['speeds']!r}"
+            )
         return speeds, speeds * tau / length
     xi = t["xi"]
     if isinstance(xi, list):
@@ -279,8 +334,13 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     loads = scene_values.loads(raw["loading"]["load"])
     tau, tau_source = _xi_time(raw["loading"], material)
     kind = raw["surface"]["kind"]
-    xi_length = surface.length if kind not in INDENTER_KINDS else guidance.hertz_radius(
-        kind, modulus=material.E0, nu=material.nu, radius=raw["surface"]["radius"], load=loads[0])
+    xi_length = (
+        surface.length
+        if kind not in INDENTER_KINDS
+        else guidance.hertz_radius(
+            kind, modulus=material.E0, nu=material.nu, radius=raw["surface"]["radius"], load=loads[0]
+        )
+    )
     speeds, xi = _speeds(raw["loading"], tau, xi_length)
     warnings = guidance.resolution_warnings(raw["surface"], surface.n, MIN_POINTS_PER_WAVELENGTH)
     solver = raw.get("solver", {})
@@ -296,8 +356,10 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     run["method"] = solver.get("method", "auto")
     valid = ("auto", "active-set") if run["periodic"] else ("auto", "uniform", "adaptive")
     if run["method"] not in valid:
-        raise InputError(f"[solver] method must be one of {', '.join(map(repr, valid))} with periodic = "
-                         f"{str(run['periodic']).lower()}, got {run['method']!r}")
+        raise InputError(
+            f"[solver] method must be one of {', '.join(map(repr, valid))} with periodic = "
+            f"{str(run['periodic']).lower()}, got {run['method']!r}"
+        )
     analysis = raw.get("analysis", {})
     _check_keys(analysis, "analysis")
     _check_keys(raw.get("outputs", {}), "outputs")
@@ -314,13 +376,30 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     from .directions import parse as parse_directions
 
     run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
-    return Scene(title=str(raw.get("title", Path(source).stem)), material=material, surface=surface,
-                 load=loads[0], speeds=speeds, xi=xi, xi_time=tau, outputs=outputs, source=source,
-                 raw=raw, realisations=realisations, loads=loads, contact_level=float(level),
-                 psd_smoothing=float(smoothing), plot_xi=None if plot_xi is None else float(plot_xi),
-                 xi_length=float(xi_length), xi_time_source=tau_source, warnings=tuple(warnings),
-                 fields_precision=precision, **run, **temperatures.scene_fields(raw, material),
-                 dma=temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None)
+    return Scene(
+        title=str(raw.get("title", Path(source).stem)),
+        material=material,
+        surface=surface,
+        load=loads[0],
+        speeds=speeds,
+        xi=xi,
+        xi_time=tau,
+        outputs=outputs,
+        source=source,
+        raw=raw,
+        realisations=realisations,
+        loads=loads,
+        contact_level=float(level),
+        psd_smoothing=float(smoothing),
+        plot_xi=None if plot_xi is None else float(plot_xi),
+        xi_length=float(xi_length),
+        xi_time_source=tau_source,
+        warnings=tuple(warnings),
+        fields_precision=precision,
+        **run,
+        **temperatures.scene_fields(raw, material),
+        dma=temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None,
+    )
 
 
 def load(path=None, *, overrides=()):

@@ -1,6 +1,7 @@
 """Checks of single scene values: numbers, loads, the [solver] and [outputs] tables, and
 ``--set`` overrides. Each raises :class:`~bem.errors.InputError` naming the key, its valid
 range and the value received."""
+
 import sys
 
 import numpy as np
@@ -24,8 +25,15 @@ def number(section, key, value):
 
 def outputs(t, surface):
     """The [outputs] booleans with their defaults, and the fields' precision (keys already checked)."""
-    outputs = {"friction_curve": True, "fields": True, "plots": True, "vtk": False,
-               "anisotropy": False, "contact_psd": False, "persson": False}
+    outputs = {
+        "friction_curve": True,
+        "fields": True,
+        "plots": True,
+        "vtk": False,
+        "anisotropy": False,
+        "contact_psd": False,
+        "persson": False,
+    }
     outputs.update(t)
     precision = outputs.pop("fields_precision", "float32")
     if precision not in ("float32", "float64"):
@@ -41,10 +49,13 @@ def outputs(t, surface):
 
 def loads(value):
     values = value if isinstance(value, list) else [value]
-    if not values or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf
-                             for v in values):
-        raise InputError(f"[loading] load must be a finite number > 0 or a non-empty list of them "
-                         f"(N; N/m for 1-D profiles), got {value!r}")
+    if not values or not all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf for v in values
+    ):
+        raise InputError(
+            f"[loading] load must be a finite number > 0 or a non-empty list of them "
+            f"(N; N/m for 1-D profiles), got {value!r}"
+        )
     return tuple(float(v) for v in values)
 
 
@@ -67,9 +78,15 @@ def solver(t):
     scheduler = t.get("scheduler")
     if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
         raise InputError(f"[solver] scheduler must be an address such as 'tcp://host:8786', got {scheduler!r}")
-    return {"rtol": float(rtol), "maxiter": integer("maxiter", 400, 1),
-            "warm_start": warm, "workers": integer("workers", 1, 1),
-            "chunk": integer("chunk", 0, 0), "scheduler": scheduler, "fold_tol": float(fold)}
+    return {
+        "rtol": float(rtol),
+        "maxiter": integer("maxiter", 400, 1),
+        "warm_start": warm,
+        "workers": integer("workers", 1, 1),
+        "chunk": integer("chunk", 0, 0),
+        "scheduler": scheduler,
+        "fold_tol": float(fold),
+    }
 
 
 def override(raw, item):

@@ -22,6 +22,7 @@ Every file is written atomically (a temporary file, then renamed) with the permi
 a plain new file, so a run that fails never leaves a truncated file, and a scene rejected
 as bad input touches nothing in the output folder.
 """
+
 import io
 import json
 import math
@@ -77,25 +78,51 @@ def _version():
 
 def _base_record(scene, material, workers, scheduler):
     return {
-        "title": scene.title, "scene": scene.source, "viscobem_version": _version(),
+        "title": scene.title,
+        "scene": scene.source,
+        "viscobem_version": _version(),
         "python": platform.python_version(),
-        "units": {"length": "m", "pressure": "Pa", "load": "N (N/m for 1-D profiles)", "speed": "m/s",
-                  "power": "W (W/m for 1-D profiles)", "xi": "v * xi_time / xi_length (dimensionless)",
-                  "contact_radius": "m", "contact_area": "m^2 (m for 1-D profiles)",
-                  "moments": "m20, m02, m11 of the displacement field: m^2/m^2 (dimensionless)"},
+        "units": {
+            "length": "m",
+            "pressure": "Pa",
+            "load": "N (N/m for 1-D profiles)",
+            "speed": "m/s",
+            "power": "W (W/m for 1-D profiles)",
+            "xi": "v * xi_time / xi_length (dimensionless)",
+            "contact_radius": "m",
+            "contact_area": "m^2 (m for 1-D profiles)",
+            "moments": "m20, m02, m11 of the displacement field: m^2/m^2 (dimensionless)",
+        },
         "conventions": "heights positive toward the half-space; the surface slides in +x (axis 0); "
-                       "friction = dissipation form, friction_eq6 = -(1/F_N) int p dh/dx dA; ensemble "
-                       "values are means over realisations with standard errors in *_se",
+        "friction = dissipation form, friction_eq6 = -(1/F_N) int p dh/dx dA; ensemble "
+        "values are means over realisations with standard errors in *_se",
         "material": records.material_record(scene.material),
-        "material_solved": {**records.material_record(material), "terms": int(material.moduli.size),
-                            "terms_folded": int(scene.material.moduli.size - material.moduli.size)},
-        "surface": records.surface_record(scene), "realisations": len(scene.realisations),
-        "seeds": list(scene.seeds), "loads": list(scene.loads), "load": scene.load, "xi_time": scene.xi_time,
-        "xi_time_source": scene.xi_time_source, "xi_length": scene.xi_length,
-        "solver": {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
-                   "workers": workers, "scheduler": scheduler},
+        "material_solved": {
+            **records.material_record(material),
+            "terms": int(material.moduli.size),
+            "terms_folded": int(scene.material.moduli.size - material.moduli.size),
+        },
+        "surface": records.surface_record(scene),
+        "realisations": len(scene.realisations),
+        "seeds": list(scene.seeds),
+        "loads": list(scene.loads),
+        "load": scene.load,
+        "xi_time": scene.xi_time,
+        "xi_time_source": scene.xi_time_source,
+        "xi_length": scene.xi_length,
+        "solver": {
+            "rtol": scene.rtol,
+            "maxiter": scene.maxiter,
+            "periodic": scene.periodic,
+            "method": scene.method,
+            "workers": workers,
+            "scheduler": scheduler,
+        },
         "outputs": {**scene.outputs, "fields_precision": scene.fields_precision},
-        "warnings": list(scene.warnings), "stages": {}, "stages_run": [], "complete": False,
+        "warnings": list(scene.warnings),
+        "stages": {},
+        "stages_run": [],
+        "complete": False,
         "direction_deg": round(math.degrees(scene.direction), 9),
     }
 
@@ -142,8 +169,13 @@ def _sweep(scene, material, todo, recs, points_dir, workers, scheduler, progress
                     on_point(rec)
 
     try:
-        execute(_tasks(scene, material, todo, points_dir, workers, scheduler, keep), workers=workers,
-                scheduler=scheduler, on_point=on_point, poll=poll)
+        execute(
+            _tasks(scene, material, todo, points_dir, workers, scheduler, keep),
+            workers=workers,
+            scheduler=scheduler,
+            on_point=on_point,
+            poll=poll,
+        )
     finally:
         bar.close()
 
@@ -172,10 +204,15 @@ def _write_fields(scene, fields, out, points_dir, recs):
     idx = sorted(fields)
     dtype = np.dtype(scene.fields_precision)
     keys = [recs[(0, 0, i)]["key"] for i in idx]
-    arrays = {"heights": scene.surface.heights.astype(dtype), "speed": scene.speeds[idx], "xi": scene.xi[idx],
-              "approach": np.array([fields[i].approach for i in idx]), "point_keys": np.array(keys),
-              "pressure": np.stack([fields[i].pressure for i in idx]).astype(dtype),
-              "displacement": np.stack([fields[i].displacement for i in idx]).astype(dtype)}
+    arrays = {
+        "heights": scene.surface.heights.astype(dtype),
+        "speed": scene.speeds[idx],
+        "xi": scene.xi[idx],
+        "approach": np.array([fields[i].approach for i in idx]),
+        "point_keys": np.array(keys),
+        "pressure": np.stack([fields[i].pressure for i in idx]).astype(dtype),
+        "displacement": np.stack([fields[i].displacement for i in idx]).astype(dtype),
+    }
     buffer = io.BytesIO()
     np.savez_compressed(buffer, **arrays)
     write_atomic(out / STUDY_FIELDS, buffer.getvalue(), mode="wb")
@@ -188,11 +225,14 @@ def _write_fields(scene, fields, out, points_dir, recs):
 def _outputs(scene, record, recs, points_dir, out, extras, stages):
     """fields.npz, plots and VTK as requested; returns the file names written."""
     outputs, written = scene.outputs, ["results.json"]
-    fields = _fields_of_first(scene, recs, points_dir) if outputs["fields"] or outputs["plots"] or outputs["vtk"] \
-        else {}
-    steps = [("fields", outputs["fields"] and fields, lambda: _write_fields(scene, fields, out, points_dir, recs)),
-             ("plots", outputs["plots"], lambda: _plots(scene, record, fields, extras, out)),
-             ("vtk", outputs["vtk"] and fields, lambda: _vtk(scene, fields, out))]
+    fields = (
+        _fields_of_first(scene, recs, points_dir) if outputs["fields"] or outputs["plots"] or outputs["vtk"] else {}
+    )
+    steps = [
+        ("fields", outputs["fields"] and fields, lambda: _write_fields(scene, fields, out, points_dir, recs)),
+        ("plots", outputs["plots"], lambda: _plots(scene, record, fields, extras, out)),
+        ("vtk", outputs["vtk"] and fields, lambda: _vtk(scene, fields, out)),
+    ]
     for name, wanted, step in steps:
         if wanted:
             t0 = time.perf_counter()
@@ -212,8 +252,9 @@ def _vtk(scene, fields, out):
     from validation import vtk_io
 
     idx = sorted(fields)
-    return vtk_io.write_sweep(out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx],
-                              material=scene.material)
+    return vtk_io.write_sweep(
+        out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx], material=scene.material
+    )
 
 
 def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
@@ -243,10 +284,19 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     stages = record["stages"]
     stages["fold"] = time.perf_counter() - t_start
     outputs = scene.outputs
-    keep = {"fields": outputs["fields"] or outputs["plots"] or outputs["vtk"], "chi": outputs["contact_psd"],
-            "precision": scene.fields_precision}
-    settings = {"rtol": scene.rtol, "maxiter": scene.maxiter, "periodic": scene.periodic, "method": scene.method,
-                "anisotropy": outputs["anisotropy"], **keep}
+    keep = {
+        "fields": outputs["fields"] or outputs["plots"] or outputs["vtk"],
+        "chi": outputs["contact_psd"],
+        "precision": scene.fields_precision,
+    }
+    settings = {
+        "rtol": scene.rtol,
+        "maxiter": scene.maxiter,
+        "periodic": scene.periodic,
+        "method": scene.method,
+        "anisotropy": outputs["anisotropy"],
+        **keep,
+    }
     if scene.direction != 0.0:  # sliding direction
         settings["direction"] = scene.direction
     recs, todo = _finished_points(scene, material, settings, points_dir)
@@ -294,17 +344,34 @@ def _tasks(scene, material, todo, points_dir, workers, scheduler, keep):
             continue
         size = scene.chunk or max(1, math.ceil(len(indices) / parallel))
         for start in range(0, len(indices), size):
-            chunk = indices[start:start + size]
-            keys = {(r, i): todo[(r, l, i)] for i in chunk for r in range(len(scene.realisations))
-                    if (r, l, i) in todo}
-            tasks.append({"material": material, "surfaces": list(scene.realisations), "seeds": list(scene.seeds),
-                          "load": load, "l": l, "speeds": scene.speeds, "xi": scene.xi, "indices": chunk,
-                          "keys": keys, "rtol": scene.rtol, "maxiter": scene.maxiter,
-                          "periodic": scene.periodic, "method": scene.method,
-                          "warm_start": scene.warm_start, "anisotropy": scene.outputs["anisotropy"],
-                          "keep_fields": keep["fields"], "keep_chi": keep["chi"], "precision": keep["precision"],
-                          "indenter": indenter, "out": str(points_dir),
-                          "single_thread": scheduler is None and workers > 1, "direction": scene.direction})
+            chunk = indices[start : start + size]
+            keys = {(r, i): todo[(r, l, i)] for i in chunk for r in range(len(scene.realisations)) if (r, l, i) in todo}
+            tasks.append(
+                {
+                    "material": material,
+                    "surfaces": list(scene.realisations),
+                    "seeds": list(scene.seeds),
+                    "load": load,
+                    "l": l,
+                    "speeds": scene.speeds,
+                    "xi": scene.xi,
+                    "indices": chunk,
+                    "keys": keys,
+                    "rtol": scene.rtol,
+                    "maxiter": scene.maxiter,
+                    "periodic": scene.periodic,
+                    "method": scene.method,
+                    "warm_start": scene.warm_start,
+                    "anisotropy": scene.outputs["anisotropy"],
+                    "keep_fields": keep["fields"],
+                    "keep_chi": keep["chi"],
+                    "precision": keep["precision"],
+                    "indenter": indenter,
+                    "out": str(points_dir),
+                    "single_thread": scheduler is None and workers > 1,
+                    "direction": scene.direction,
+                }
+            )
     return tasks
 
 
@@ -317,6 +384,12 @@ def _fields_of_first(scene, recs, points_dir):
             continue
         data = load_fields(points_dir, rec, scene.surface)
         if data is not None and "pressure" in data:
-            fields[i] = SimpleNamespace(friction=rec["friction"], contact_fraction=rec["contact_fraction"],
-                                        speed=rec["speed"], load=rec["load"], approach=rec["approach"], **data)
+            fields[i] = SimpleNamespace(
+                friction=rec["friction"],
+                contact_fraction=rec["contact_fraction"],
+                speed=rec["speed"],
+                load=rec["load"],
+                approach=rec["approach"],
+                **data,
+            )
     return fields

@@ -18,6 +18,7 @@ solver tolerances, requested per-point outputs), so a rerun in the same folder s
 finished points of the same study and recomputes the others. Dask workers must see the
 output folder (a shared filesystem) for fields to be kept; their numbers come back anyway.
 """
+
 import hashlib
 import io
 import json
@@ -77,16 +78,20 @@ def point_key(material, surface, load, speed, settings):
     h = hashlib.sha256()
     for arr in (material.moduli, material.relaxation_times, surface.heights):
         h.update(np.ascontiguousarray(arr).tobytes())
-    h.update(json.dumps([material.E0, material.nu, surface.length, float(load), float(speed),
-                         settings], sort_keys=True).encode())
+    h.update(
+        json.dumps(
+            [material.E0, material.nu, surface.length, float(load), float(speed), settings], sort_keys=True
+        ).encode()
+    )
     return h.hexdigest()[:24]
 
 
 def _save_fields(path, res, keep_fields, keep_chi, dtype):
     arrays = {}
     if keep_fields:
-        arrays.update(pressure=res.pressure.astype(dtype), displacement=res.displacement.astype(dtype),
-                      approach=res.approach)
+        arrays.update(
+            pressure=res.pressure.astype(dtype), displacement=res.displacement.astype(dtype), approach=res.approach
+        )
     if keep_chi:
         chi = res.pressure > 0
         arrays.update(chi=np.packbits(chi, axis=None), chi_shape=np.array(chi.shape))
@@ -95,17 +100,36 @@ def _save_fields(path, res, keep_fields, keep_chi, dtype):
     write_atomic(path, buf.getvalue(), mode="wb")
 
 
-NUMBERS = [("friction", "friction"), ("friction_eq6", "friction_eq6"), ("contact_fraction", "contact_fraction"),
-           ("approach", "approach"), ("dissipated_power", "dissipated_power"), ("iterations", "iterations"),
-           ("operator_products", "matvecs"), ("residual", "residual"), ("wall_time", "wall_time")]
+NUMBERS = [
+    ("friction", "friction"),
+    ("friction_eq6", "friction_eq6"),
+    ("contact_fraction", "contact_fraction"),
+    ("approach", "approach"),
+    ("dissipated_power", "dissipated_power"),
+    ("iterations", "iterations"),
+    ("operator_products", "matvecs"),
+    ("residual", "residual"),
+    ("wall_time", "wall_time"),
+]
 
 
 def point_record(task, r, i, res, message):
     """The numbers of one solved point (``res`` None: it failed), with its per-point outputs."""
     speed = float(task["speeds"][i])
-    rec = {"success": res is not None, "message": message, "times": {}, "key": task["keys"][(r, i)], "r": r,
-           "l": task["l"], "i": i, "seed": task["seeds"][r], "load": task["load"], "speed": speed,
-           "xi": float(task["xi"][i]), "fields": None}
+    rec = {
+        "success": res is not None,
+        "message": message,
+        "times": {},
+        "key": task["keys"][(r, i)],
+        "r": r,
+        "l": task["l"],
+        "i": i,
+        "seed": task["seeds"][r],
+        "load": task["load"],
+        "speed": speed,
+        "xi": float(task["xi"][i]),
+        "fields": None,
+    }
     if res is None:
         return rec
     rec["times"]["solve"] = res.wall_time
@@ -115,8 +139,9 @@ def point_record(task, r, i, res, message):
         rec.update(indenter_contact(task["indenter"], res.pressure, task["surfaces"][r].spacing))
     if task["anisotropy"] and res.pressure.ndim == 2:
         t0 = time.perf_counter()
-        rec["moments"] = anisotropy.spectral_moments(res.displacement, task["surfaces"][r].length,
-                                                     direction=task.get("direction", 0.0)).as_dict()
+        rec["moments"] = anisotropy.spectral_moments(
+            res.displacement, task["surfaces"][r].length, direction=task.get("direction", 0.0)
+        ).as_dict()
         rec["times"]["anisotropy"] = time.perf_counter() - t0
     return rec
 
@@ -126,7 +151,7 @@ def indenter_contact(kind, pressure, spacing):
     area for a sphere, half the contact width for a cylinder."""
     count = int(np.count_nonzero(pressure > 0))
     if kind == "sphere":
-        area = count * spacing ** 2
+        area = count * spacing**2
         return {"contact_area": area, "contact_radius": float(np.sqrt(area / np.pi))}
     return {"contact_area": count * spacing, "contact_radius": count * spacing / 2}
 
@@ -166,11 +191,21 @@ def run_chunk(task, callback=None):
         if callback is not None:
             callback(rec)
 
-    sweep(task["surfaces"], task["material"], speeds=np.asarray(task["speeds"])[indices], load=task["load"],
-          rtol=task["rtol"], maxiter=task["maxiter"], warm_start=task["warm_start"],
-          periodic=task.get("periodic", True), method=task.get("method", "auto"),
-          skip=lambda j, r: (r, indices[j]) not in task["keys"], on_point=on_point, keep=False,
-          direction=task.get("direction", 0.0))
+    sweep(
+        task["surfaces"],
+        task["material"],
+        speeds=np.asarray(task["speeds"])[indices],
+        load=task["load"],
+        rtol=task["rtol"],
+        maxiter=task["maxiter"],
+        warm_start=task["warm_start"],
+        periodic=task.get("periodic", True),
+        method=task.get("method", "auto"),
+        skip=lambda j, r: (r, indices[j]) not in task["keys"],
+        on_point=on_point,
+        keep=False,
+        direction=task.get("direction", 0.0),
+    )
     return records
 
 
@@ -223,8 +258,11 @@ def load_fields(folder, rec, surface):
     out = {}
     if "pressure" in data:
         h = surface.heights
-        out.update(pressure=data["pressure"], displacement=data["displacement"],
-                   gap=data["displacement"] - (h - h.max() + float(data["approach"])))
+        out.update(
+            pressure=data["pressure"],
+            displacement=data["displacement"],
+            gap=data["displacement"] - (h - h.max() + float(data["approach"])),
+        )
     if "chi" in data:
         shape = tuple(data["chi_shape"])
         out["chi"] = np.unpackbits(data["chi"], count=int(np.prod(shape))).reshape(shape).astype(bool)

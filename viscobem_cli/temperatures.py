@@ -50,9 +50,7 @@ SHIFT_KEYS = {
 def _unit(t, key, table, default):
     unit = t.get(key, default)
     if unit not in table:
-        raise InputError(
-            f"[material] {key} must be one of {', '.join(map(repr, table))}, got {unit!r}"
-        )
+        raise InputError(f"[material] {key} must be one of {', '.join(map(repr, table))}, got {unit!r}")
     return table[unit]
 
 
@@ -62,9 +60,7 @@ def read_dma(t, base):
         raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
     path = (Path(base) / t["dma"]).resolve()
     try:
-        data = np.loadtxt(
-            path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2
-        )
+        data = np.loadtxt(path, delimiter="," if path.suffix == ".csv" else None, comments="#", ndmin=2)
     except (OSError, ValueError) as err:
         raise InputError(f"[material] dma: cannot read {str(path)!r}: {err}") from None
     if data.shape[1] not in (3, 4):
@@ -76,13 +72,7 @@ def read_dma(t, base):
     scale = _unit(t, "dma_modulus_unit", MODULUS_UNITS, "Pa")
     offset = _unit(t, "dma_temperature_unit", TEMPERATURE_OFFSETS, "K")
     temps = data[:, 3] + offset if data.shape[1] == 4 else None
-    return {
-        "w": w,
-        "e1": data[:, 1] * scale,
-        "e2": data[:, 2] * scale,
-        "T": temps,
-        "path": str(path),
-    }
+    return {"w": w, "e1": data[:, 1] * scale, "e2": data[:, 2] * scale, "T": temps, "path": str(path)}
 
 
 def _shift_table(t):
@@ -90,9 +80,7 @@ def _shift_table(t):
     if table is None:
         return None
     if not isinstance(table, dict) or table.get("law") not in SHIFT_KEYS:
-        raise InputError(
-            f"[material] shift must be a table with law = 'wlf' or 'arrhenius', got {table!r}"
-        )
+        raise InputError(f"[material] shift must be a table with law = 'wlf' or 'arrhenius', got {table!r}")
     unknown = sorted(set(table) - SHIFT_KEYS[table["law"]])
     if unknown:
         raise InputError(
@@ -158,14 +146,10 @@ def loading_temperatures(t, law):
     if not (
         isinstance(values, list)
         and values
-        and all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf
-            for v in values
-        )
+        and all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf for v in values)
     ):
         raise InputError(
-            f"[loading] temperatures must be a non-empty list of absolute temperatures > 0 K, "
-            f"got {values!r}"
+            f"[loading] temperatures must be a non-empty list of absolute temperatures > 0 K, got {values!r}"
         )
     if law is None:
         raise InputError(
@@ -195,14 +179,8 @@ def run(scene, out_dir, run_scene, *, progress=True, scheduler=None, workers=Non
     started = time.perf_counter()
     records = []
     for T in scene.temperatures:
-        sub = dataclasses.replace(
-            scene, material=scene.material.at_temperature(T, scene.shift), temperatures=()
-        )
-        records.append(
-            run_scene(
-                sub, out / folder_name(T), progress=progress, scheduler=scheduler, workers=workers
-            )
-        )
+        sub = dataclasses.replace(scene, material=scene.material.at_temperature(T, scene.shift), temperatures=())
+        records.append(run_scene(sub, out / folder_name(T), progress=progress, scheduler=scheduler, workers=workers))
     law = scene.shift
     table = {
         "temperature": list(scene.temperatures),
@@ -239,9 +217,7 @@ def run(scene, out_dir, run_scene, *, progress=True, scheduler=None, workers=Non
         )
     }
     extra = [
-        f"at {T:g} K: {w}"
-        for T, r in zip(scene.temperatures, records)
-        for w in r["warnings"][len(scene.warnings) :]
+        f"at {T:g} K: {w}" for T, r in zip(scene.temperatures, records) for w in r["warnings"][len(scene.warnings) :]
     ]
     record.update(
         temperature_sweep=table,
@@ -252,11 +228,7 @@ def run(scene, out_dir, run_scene, *, progress=True, scheduler=None, workers=Non
         complete=True,
         stages={"total": time.perf_counter() - started},
     )
-    files = [
-        f"{folder_name(T)}/{name}"
-        for T, r in zip(scene.temperatures, records)
-        for name in r["files"]
-    ]
+    files = [f"{folder_name(T)}/{name}" for T, r in zip(scene.temperatures, records) for name in r["files"]]
     if scene.outputs.get("plots"):
         files += plot_temperature_sweep(table, out)
     files += write_master_curve(scene, out)
@@ -270,19 +242,11 @@ def summary(record):
     table = record["temperature_sweep"]
     lines = []
     for sweep in table["loads"]:
-        lines.append(
-            f"  friction coefficient at load {sweep['load']:g} (N; N/m for profiles), by temperature (K):"
-        )
-        lines.append(
-            "  " + f"{'speed (m/s)':>12}" + "".join(f"{T:>10.2f}" for T in table["temperature"])
-        )
+        lines.append(f"  friction coefficient at load {sweep['load']:g} (N; N/m for profiles), by temperature (K):")
+        lines.append("  " + f"{'speed (m/s)':>12}" + "".join(f"{T:>10.2f}" for T in table["temperature"]))
         for i, v in enumerate(sweep["speed"]):
             cells = [sweep["friction"][k][i] for k in range(len(table["temperature"]))]
-            lines.append(
-                "  "
-                + f"{v:12.4e}"
-                + "".join(f"{'failed':>10}" if c is None else f"{c:10.5f}" for c in cells)
-            )
+            lines.append("  " + f"{v:12.4e}" + "".join(f"{'failed':>10}" if c is None else f"{c:10.5f}" for c in cells))
     return "\n".join(lines)
 
 
@@ -296,23 +260,17 @@ def plot_temperature_sweep(table, out):
     T = np.array(table["temperature"])
     sweep = table["loads"][0]
     v = np.array(sweep["speed"], dtype=float)
-    mu = np.array(
-        [[np.nan if x is None else x for x in row] for row in sweep["friction"]], dtype=float
-    )
+    mu = np.array([[np.nan if x is None else x for x in row] for row in sweep["friction"]], dtype=float)
     written = []
     moving = v > 0
     if moving.sum() >= 2 and T.size >= 2:
         order = np.argsort(T)
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
-        mesh = ax.pcolormesh(
-            np.log10(v[moving]), T[order], mu[order][:, moving], shading="nearest", cmap="viridis"
-        )
+        mesh = ax.pcolormesh(np.log10(v[moving]), T[order], mu[order][:, moving], shading="nearest", cmap="viridis")
         fig.colorbar(mesh, ax=ax, label="friction coefficient")
         ax.set_xlabel("log10 sliding speed (m/s)")
         ax.set_ylabel("temperature (K)")
-        ax.set_title(
-            f"friction against speed and temperature (load {sweep['load']:g} N, or N/m for profiles)"
-        )
+        ax.set_title(f"friction against speed and temperature (load {sweep['load']:g} N, or N/m for profiles)")
         written.append(_save(fig, out / "friction_speed_temperature.png"))
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for k in np.argsort(T):
@@ -328,15 +286,9 @@ def plot_temperature_sweep(table, out):
 def write_master_curve(scene, out):
     """``master_curve.png`` when the material was fitted to DMA sweeps at several temperatures."""
     report = scene.material.fit_report
-    if not (
-        isinstance(report, MasterCurveReport)
-        and scene.outputs.get("plots")
-        and scene.dma is not None
-    ):
+    if not (isinstance(report, MasterCurveReport) and scene.outputs.get("plots") and scene.dma is not None):
         return []
-    return [
-        plot_master_curve(scene.dma, scene.material, report.law, Path(out) / "master_curve.png")
-    ]
+    return [plot_master_curve(scene.dma, scene.material, report.law, Path(out) / "master_curve.png")]
 
 
 def plot_master_curve(data, material, law, path):
@@ -367,9 +319,7 @@ def plot_master_curve(data, material, law, path):
     axes[0].set_ylabel("modulus (Pa); colour: temperature (blue cold, red hot)")
     axes[1].legend(fontsize="small")
     name = type(law).__name__
-    params = ", ".join(
-        f"{k} = {v:.4g}" for k, v in vars(law).items() if k != "reference_temperature"
-    )
+    params = ", ".join(f"{k} = {v:.4g}" for k, v in vars(law).items() if k != "reference_temperature")
     fig.suptitle(f"master curve: {name} ({params})")
     return _save(fig, path)
 

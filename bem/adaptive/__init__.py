@@ -13,7 +13,7 @@ Modules: :mod:`~bem.adaptive.mesh` (elements, refinement rules, sampling of the 
 and strip elements), :mod:`~bem.adaptive.assembly` (the dense matrices and the contact
 operator), :mod:`~bem.adaptive.solver` (the refinement loop, :func:`solve_adaptive`).
 
-Response (SPEC §2.2), indenter moving in ``+x``, displacement positive into the solid::
+Response (docs/theory.md §3), indenter moving in ``+x``, displacement positive into the solid::
 
     u(x) = (1/E_inf) (G * p)(x) + sum_k C_k integral_0^inf exp(-z) (G * p)(x + v lambda_k z) dz.
 
@@ -25,10 +25,19 @@ as fast only when the contact covers ~1% of a wide domain; ``method="auto"`` the
 the uniform grid. The adaptive solver remains an independent check of it (same collocation
 inside the contact, independent kernels) and the seed's method.
 """
+
 from .assembly import influence_matrix
 from .mesh import AdaptiveMesh, marked_elements, refine, uniform_mesh
 from .solver import AdaptiveResult, solve_adaptive
 from .square import cell_creep_table
 
-__all__ = ["AdaptiveMesh", "AdaptiveResult", "solve_adaptive", "influence_matrix", "uniform_mesh",
-           "marked_elements", "refine", "cell_creep_table"]
+__all__ = [
+    "AdaptiveMesh",
+    "AdaptiveResult",
+    "solve_adaptive",
+    "influence_matrix",
+    "uniform_mesh",
+    "marked_elements",
+    "refine",
+    "cell_creep_table",
+]

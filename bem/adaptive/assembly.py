@@ -6,6 +6,7 @@ system written for the element *forces* ``f_i = A_i p_i`` (N; N/m for profiles),
 load constraint ``mean(f) = load / N_e`` is exactly the total force. Its complementarity
 residual is therefore stated in forces: ``max |min(f_i / f_mean, g_i / h_ref)|``.
 """
+
 import numpy as np
 
 from .square import matrices_2d

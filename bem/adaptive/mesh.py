@@ -1,7 +1,7 @@
 """Meshes of the adaptive BEM: elements as aligned blocks of fine cells, refinement rules,
 and the indenter's heights sampled at the element centres.
 
-Geometry (SPEC §2.3, :mod:`bem.surfaces`). The fine grid is the surface's grid: ``n`` cells of
+Geometry (docs/theory.md §4, :mod:`bem.surfaces`). The fine grid is the surface's grid: ``n`` cells of
 side ``dx = length / n`` per side on a domain ``[-length/2, length/2]`` centred on the
 indenter (cell ``j`` centred at ``(j + 1/2) dx - length/2``). Elements are aligned blocks of
 ``s = 2**m`` fine cells. Heights are taken at element centres: the callable ``height`` is
@@ -9,6 +9,7 @@ evaluated there exactly; otherwise a block of one cell takes that cell's height 
 block the mean of its 2 (or 2 x 2) central cells, i.e. the linear interpolation at its centre.
 Pressure outside the domain is zero.
 """
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -157,4 +158,3 @@ def element_values(mesh, field, sampling):
     s = mesh.size
     two = np.where(s > 1, 2, 1)
     return _block_mean(field, mesh.start + (s // 2 - (s > 1))[:, None], two)
-

@@ -6,6 +6,7 @@ the displacement at the element centres (closed form; the creep slope is
 Both converge to ``F_x / F_N`` with refinement. Output fields are mapped back to the fine
 grid piecewise constant per element (``gap >= 0`` and ``p gap = 0`` hold exactly there).
 """
+
 import logging
 import time
 from dataclasses import dataclass, field
@@ -43,6 +44,7 @@ def _indenter(surface, height, sampling):
     """Functions ``mesh -> (heights, x-slopes)`` at the element centres."""
     dx = surface.spacing
     if height is not None:
+
         def values(c):
             return np.broadcast_to(np.asarray(height(*c.T), dtype=float), (len(c),))
 
@@ -51,6 +53,7 @@ def _indenter(surface, height, sampling):
             e = np.zeros(c.shape[1])
             e[0] = 0.25 * dx  # central difference: exact for quadratic indenters
             return values(c), (values(c + e) - values(c - e)) / (0.5 * dx)
+
         return at
     h = np.asarray(surface.heights, dtype=float)
     dh = np.gradient(h, dx, axis=0)  # second order inside; the contact must stay off the border
@@ -64,8 +67,9 @@ def _solve_level(mesh, material, speed, load, heights, initial, rtol, maxiter, w
     op = ForceOperator(K, areas, phase_symbol(material, speed, mesh))
     # initial None on the coarsest level: the contact solver starts strongly non-symmetric
     # problems from its symmetric part's contact, others from op.initial_pressure
-    sol = solve_contact(op, heights, mean_pressure=load / len(mesh), rtol=rtol, maxiter=maxiter,
-                        initial=initial, raise_on_failure=False)
+    sol = solve_contact(
+        op, heights, mean_pressure=load / len(mesh), rtol=rtol, maxiter=maxiter, initial=initial, raise_on_failure=False
+    )
     return sol, K, S
 
 
@@ -81,8 +85,10 @@ def _check(surface, material, speed, load, rtol, levels, buffer, gradient, sampl
         raise InputError(f"rtol must be in (0, 1), got {show(rtol)}")
     levels = check_int("levels", levels, 0, 12)
     if surface.n % 2**levels:
-        raise InputError(f"levels must leave whole coarse elements: surface.n = {surface.n} must be divisible "
-                         f"by 2**levels = {2**levels}; got levels = {levels}")
+        raise InputError(
+            f"levels must leave whole coarse elements: surface.n = {surface.n} must be divisible "
+            f"by 2**levels = {2**levels}; got levels = {levels}"
+        )
     buffer = check_positive("buffer", buffer, allow_zero=True)
     gradient = check_positive("gradient", gradient)
     if sampling not in ("centre", "mean"):
@@ -92,21 +98,36 @@ def _check(surface, material, speed, load, rtol, levels, buffer, gradient, sampl
     return speed, load, rtol, levels, buffer, gradient
 
 
-def _run(surface, material, speed, load, rtol, levels, buffer, gradient, refine_contact, sampling,
-         height, maxiter, max_elements):
+def _run(
+    surface,
+    material,
+    speed,
+    load,
+    rtol,
+    levels,
+    buffer,
+    gradient,
+    refine_contact,
+    sampling,
+    height,
+    maxiter,
+    max_elements,
+):
     """The refinement loop; returns ``(meshes, last solution, K, S, heights, slopes, totals)``."""
-    speed, load, rtol, levels, buffer, gradient = _check(surface, material, speed, load, rtol, levels,
-                                                         buffer, gradient, sampling, height)
+    speed, load, rtol, levels, buffer, gradient = _check(
+        surface, material, speed, load, rtol, levels, buffer, gradient, sampling, height
+    )
     indenter = _indenter(surface, height, sampling)
     mesh = uniform_mesh(surface.n, surface.length, surface.ndim, 2**levels)
     meshes, initial, iterations, matvecs = [], None, 0, 0
     for level in range(levels + 1):
         if len(mesh) > max_elements:
-            raise InputError(f"max_elements: level {level} needs {len(mesh)} elements > max_elements = "
-                             f"{max_elements}; use fewer levels, a coarser surface or a larger limit")
+            raise InputError(
+                f"max_elements: level {level} needs {len(mesh)} elements > max_elements = "
+                f"{max_elements}; use fewer levels, a coarser surface or a larger limit"
+            )
         hts, slopes = indenter(mesh)
-        sol, K, S = _solve_level(mesh, material, speed, load, hts, initial, rtol, maxiter,
-                                 with_slope=level == levels)
+        sol, K, S = _solve_level(mesh, material, speed, load, hts, initial, rtol, maxiter, with_slope=level == levels)
         iterations, matvecs = iterations + sol.iterations, matvecs + sol.matvecs
         meshes.append(mesh)
         log.info("adaptive level %d: %d elements, %s", level, len(mesh), sol.message)
@@ -122,10 +143,23 @@ def _run(surface, material, speed, load, rtol, levels, buffer, gradient, refine_
     return meshes, sol, K, S, hts, slopes, iterations, matvecs
 
 
-
-def solve_adaptive(surface, material, *, speed, load, rtol=1e-8, levels=3, buffer=1.0, gradient=0.05,
-                   refine_contact=True, sampling="centre", height=None, maxiter=400, max_elements=20000,
-                   raise_on_failure=True):
+def solve_adaptive(
+    surface,
+    material,
+    *,
+    speed,
+    load,
+    rtol=1e-8,
+    levels=3,
+    buffer=1.0,
+    gradient=0.05,
+    refine_contact=True,
+    sampling="centre",
+    height=None,
+    maxiter=400,
+    max_elements=20000,
+    raise_on_failure=True,
+):
     """Steady sliding of an isolated indenter on the adaptive non-uniform mesh.
 
     Parameters
@@ -175,8 +209,20 @@ def solve_adaptive(surface, material, *, speed, load, rtol=1e-8, levels=3, buffe
     maxiter = check_int("maxiter", maxiter, 1)
     max_elements = check_int("max_elements", max_elements, 1)
     meshes, sol, K, S, hts, slopes, iterations, matvecs = _run(
-        surface, material, speed, load, rtol, levels, buffer, gradient, refine_contact, sampling, height,
-        maxiter, max_elements)
+        surface,
+        material,
+        speed,
+        load,
+        rtol,
+        levels,
+        buffer,
+        gradient,
+        refine_contact,
+        sampling,
+        height,
+        maxiter,
+        max_elements,
+    )
     mesh = meshes[-1]
     f = sol.pressure
     areas = mesh.areas()
@@ -190,12 +236,24 @@ def solve_adaptive(surface, material, *, speed, load, rtol=1e-8, levels=3, buffe
     speed = float(speed)
     message = f"{len(meshes) - 1} refinement levels, {len(mesh)} elements; {sol.message}"
     result = AdaptiveResult(
-        pressure=mesh.to_fine(p), displacement=mesh.to_fine(sol.displacement), gap=mesh.to_fine(sol.gap),
-        approach=float(sol.approach), contact_fraction=float(np.sum(areas[p > 0]) / mesh.length**mesh.ndim),
-        friction=friction, friction_eq6=friction_eq6, dissipated_power=friction * total * speed,
-        load=total, speed=speed, iterations=iterations, matvecs=matvecs, residual=sol.residual,
-        success=sol.success, message=message, wall_time=time.perf_counter() - t0,
-        meshes=tuple(meshes))
+        pressure=mesh.to_fine(p),
+        displacement=mesh.to_fine(sol.displacement),
+        gap=mesh.to_fine(sol.gap),
+        approach=float(sol.approach),
+        contact_fraction=float(np.sum(areas[p > 0]) / mesh.length**mesh.ndim),
+        friction=friction,
+        friction_eq6=friction_eq6,
+        dissipated_power=friction * total * speed,
+        load=total,
+        speed=speed,
+        iterations=iterations,
+        matvecs=matvecs,
+        residual=sol.residual,
+        success=sol.success,
+        message=message,
+        wall_time=time.perf_counter() - t0,
+        meshes=tuple(meshes),
+    )
     if not sol.success and raise_on_failure:
         raise ConvergenceError(f"speed {show(speed)} m/s: {message}", result)
     return result

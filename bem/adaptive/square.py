@@ -3,13 +3,14 @@ steady sliding, on the half-cell lattice of the fine grid.
 
 ``G = (1 - nu**2) / (pi r)``. Elastic part: Love's closed form (1929) for a uniformly
 loaded rectangle, the corner sum of ``F(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|)`` (the
-signed form, SPEC §7). Creep part of term ``k`` (shift ``L = v lambda_k``): the integral is
+signed form, docs/theory.md §12). Creep part of term ``k`` (shift ``L = v lambda_k``): the integral is
 computed for one fine cell on all half-cell offsets, exactly at the shifted points (no
-interpolation, SPEC §7) by composite Gauss-Legendre quadrature, as the backward recursion
+interpolation, docs/theory.md §12) by composite Gauss-Legendre quadrature, as the backward recursion
 ``k(X) = int_0^dX exp(-r/L) g(X + r) dr/L + exp(-dX/L) k(X + dX)`` (``dX = dx/2``, ``g`` the
 cell's elastic influence) started from a graded tail quadrature; an element's coefficient
 is the sum over its cells (superposition, exact), taken from summed-area tables.
 """
+
 import numpy as np
 
 from ..influence import love_corner
@@ -29,8 +30,7 @@ def _love_slope_corner(X, Y):
 
 def _rect(x, y, x1, x2, y1, y2, corner):
     """Corner sum of ``corner`` for the rectangle ``[x1,x2] x [y1,y2]`` seen from ``(x, y)``."""
-    return (corner(x2 - x, y2 - y) - corner(x1 - x, y2 - y)
-            - corner(x2 - x, y1 - y) + corner(x1 - x, y1 - y))
+    return corner(x2 - x, y2 - y) - corner(x1 - x, y2 - y) - corner(x2 - x, y1 - y) + corner(x1 - x, y1 - y)
 
 
 def _cell_influence(X, Y, h):
@@ -89,8 +89,7 @@ def cell_creep_table(n, h, shift):
         parts[i0:i1] = np.einsum("k,ikb->ib", w, g)
     for i in range(X.size - 1):
         if abs(abs(X[i]) - dX) < 1e-9 * h or abs(abs(X[i + 1]) - dX) < 1e-9 * h:
-            parts[i, near] = np.sum(ws[:, None] * _cell_influence(X[i] + rs[:, None], Y[None, near], h),
-                                    axis=0)
+            parts[i, near] = np.sum(ws[:, None] * _cell_influence(X[i] + rs[:, None], Y[None, near], h), axis=0)
     for i in range(X.size - 2, -1, -1):
         table[i] = parts[i] + decay * table[i + 1]
     return table
@@ -128,8 +127,7 @@ def _corner_sums(table, n, mesh, rows):
     flat = table.ravel()
     ix1, ix2 = (x1 - cx + 2 * n) * m, (x2 - cx + 2 * n) * m
     iy1, iy2 = y1 - cy + 2 * n, y2 - cy + 2 * n
-    return (np.take(flat, ix2 + iy2) - np.take(flat, ix1 + iy2)
-            - np.take(flat, ix2 + iy1) + np.take(flat, ix1 + iy1))
+    return np.take(flat, ix2 + iy2) - np.take(flat, ix1 + iy2) - np.take(flat, ix2 + iy1) + np.take(flat, ix1 + iy1)
 
 
 def _block_sums(table, n, mesh, rows):
@@ -154,8 +152,7 @@ def _block_sums(table, n, mesh, rows):
         a1 = ((cx - x1 - 1 + 2 * n - parity) // 2 + 1) * m
         b0 = (cy - y2 + 1 + 2 * n - parity) // 2
         b1 = (cy - y1 - 1 + 2 * n - parity) // 2 + 1
-        out[sel] = (np.take(flat, a1 + b1) - np.take(flat, a0 + b1)
-                    - np.take(flat, a1 + b0) + np.take(flat, a0 + b0))
+        out[sel] = np.take(flat, a1 + b1) - np.take(flat, a0 + b1) - np.take(flat, a1 + b0) + np.take(flat, a0 + b0)
     return out
 
 
@@ -168,8 +165,11 @@ def matrices_2d(mesh, material, speed, with_slope=True, chunk=512):
     love_dx = _cached(("love_dx", n, h), lambda: _love_slope_corner(lattice[:, None], lattice[None, :]))
     factor = material.plane_strain_factor / np.pi
     shifts = speed * material.creep_times
-    tables = {k: _cached(("creep", n, h, L), lambda L=L: cell_creep_table(n, h, L))
-              for k, L in enumerate(shifts) if L >= 1e-4 * h}
+    tables = {
+        k: _cached(("creep", n, h, L), lambda L=L: cell_creep_table(n, h, L))
+        for k, L in enumerate(shifts)
+        if L >= 1e-4 * h
+    }
     ne = len(mesh)
     K = np.empty((ne, ne))
     S = np.empty((ne, ne)) if with_slope else None
@@ -195,4 +195,3 @@ def matrices_2d(mesh, material, speed, with_slope=True, chunk=512):
         if with_slope:
             S[rows] = factor * Sr
     return K, S
-

@@ -9,8 +9,9 @@ Closed forms: with
 ``G0(a) = a ln(|a|/l_ref) - a`` the strip ``[x1, x2]`` gives ``-(G0(x2 - x) - G0(x1 - x))``;
 the creep term replaces ``G0(a)`` by ``G0(a) + L D(a/L)``,
 ``D(t) = exp(-t) Ei(t) - ln|t| - gamma`` (an ``a``-independent constant dropped), evaluated
-by its power series for ``|t| <= 1`` so that large ``L`` does not cancel (SPEC §7).
+by its power series for ``|t| <= 1`` so that large ``L`` does not cancel (docs/theory.md §12).
 """
+
 import numpy as np
 from scipy import special
 
@@ -51,8 +52,6 @@ def _d_creep(t):
     big = np.abs(t) > 1
     out[big] = _exp_ei(t[big]) - np.log(np.abs(t[big])) - np.euler_gamma
     return out
-
-
 
 
 def _g0(a, ell):

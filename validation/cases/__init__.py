@@ -4,6 +4,7 @@ Every case runs in a quick configuration (coarse grids, few speeds: the CI regre
 and a full one; each lists only solvers that exist and justifies each tolerance beside its
 settings.
 """
+
 from .base import Case, CaseOutput, Check, Profile, Run, Sweep
 from .cylinder import CASES as _CYLINDER
 from .periodic import CASES as _PERIODIC

@@ -6,6 +6,7 @@ reason for that tolerance), the series to plot, the cost of every solver call an
 files written. Checks with ``tolerance=None`` are reported but not judged (quantities a
 discretisation cannot resolve by construction, e.g. a boundary layer thinner than a cell).
 """
+
 from __future__ import annotations
 
 import math
@@ -39,8 +40,16 @@ class Check:
         return f"{self.solver}/{self.metric}/{self.label}"
 
     def as_dict(self):
-        return dict(metric=self.metric, solver=self.solver, label=self.label, value=self.value,
-                    tolerance=self.tolerance, passed=self.passed, judged=self.judged, why=self.why)
+        return dict(
+            metric=self.metric,
+            solver=self.solver,
+            label=self.label,
+            value=self.value,
+            tolerance=self.tolerance,
+            passed=self.passed,
+            judged=self.judged,
+            why=self.why,
+        )
 
 
 @dataclass
@@ -89,8 +98,9 @@ class CaseOutput:
     numbers: dict = field(default_factory=dict)  # anything else worth keeping in report.json
 
     def check(self, metric, solver, label, value, tolerance, why=""):
-        self.checks.append(Check(metric, solver, str(label), float(value),
-                                 None if tolerance is None else float(tolerance), why))
+        self.checks.append(
+            Check(metric, solver, str(label), float(value), None if tolerance is None else float(tolerance), why)
+        )
 
     def converged(self, solver, label, sol):
         """Record a failed solve as a failed check; True when ``sol`` can be compared.
@@ -98,8 +108,14 @@ class CaseOutput:
         Every adapter reports ``success`` (a missing key is an error, never a pass)."""
         if sol["success"]:
             return True
-        self.check("solver_success", solver, label, 1.0, 0.0,
-                   f"the solve must succeed (1 = failed): {sol['message']} (residual {sol['residual']:.3g})")
+        self.check(
+            "solver_success",
+            solver,
+            label,
+            1.0,
+            0.0,
+            f"the solve must succeed (1 = failed): {sol['message']} (residual {sol['residual']:.3g})",
+        )
         return False
 
     def cost(self, solver, label, cost, detail=""):

@@ -9,6 +9,7 @@ Solvers (``SOLVERS``): ``bem-periodic`` (1-D periodic BEM on a long cell,
 (isolated 1-D BEM, :func:`solvers.bem_isolated_cylinder`), ``fem`` (scikit-fem steady rolling)
 and, for one-term materials, ``exact`` (Hunter 1961).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -21,12 +22,7 @@ from validation.hunter import rolling_cylinder as hunter
 from .base import Case, CaseOutput, Profile, Sweep
 from .cylinder_settings import FULL_PRONY, FULL_SLS, QUICK_PRONY, QUICK_SLS
 from .fem_checks import fem_self_checks
-from .solvers import (
-    bem_isolated_cylinder,
-    bem_periodic_cylinder,
-    fem_cylinder,
-    hertz_line_half_width,
-)
+from .solvers import bem_isolated_cylinder, bem_periodic_cylinder, fem_cylinder, hertz_line_half_width
 from .vtk_out import write_bem_sweep, write_pvd_for
 
 R, P = 0.01, 1000.0
@@ -53,8 +49,9 @@ def _bem(material, V, P, cfg, vtk):
 
 
 def _fem(material, V, P, cfg, vtk):
-    return fem_cylinder(material, radius=R, load=P, speed=V, resolution=cfg["resolution"], vtk=vtk,
-                        **cfg.get("fem_options", {}))
+    return fem_cylinder(
+        material, radius=R, load=P, speed=V, resolution=cfg["resolution"], vtk=vtk, **cfg.get("fem_options", {})
+    )
 
 
 # name -> adapter(material, speed, load, cfg, vtk_path) returning the dict of :mod:`.solvers`; BEM adapters
@@ -62,15 +59,21 @@ def _fem(material, V, P, cfg, vtk):
 def _isolated(method):
     def adapter(material, V, P, cfg, vtk):
         return bem_isolated_cylinder(material, radius=R, load=P, speed=V, cells=cfg["cells"], method=method)
+
     return adapter
 
 
-SOLVERS = {"bem-periodic": _bem, "bem-isolated-uniform": _isolated("uniform"),
-           "bem-isolated-adaptive": _isolated("adaptive"), "fem": _fem}
+SOLVERS = {
+    "bem-periodic": _bem,
+    "bem-isolated-uniform": _isolated("uniform"),
+    "bem-isolated-adaptive": _isolated("adaptive"),
+    "fem": _fem,
+}
 
 
-def solve_all(solvers, material, speeds, values, cfg, vtk_dir, root, out, tamper, load=P, references=(),
-              label_name="s"):
+def solve_all(
+    solvers, material, speeds, values, cfg, vtk_dir, root, out, tamper, load=P, references=(), label_name="s"
+):
     """Run every solver at every speed; record costs and VTK; return ``{solver: [outputs]}``.
 
     ``values`` are the speed parameters (labels ``<label_name>=...``, the .pvd time values). Solvers
@@ -88,8 +91,9 @@ def solve_all(solvers, material, speeds, values, cfg, vtk_dir, root, out, tamper
                 vtk = vtk_dir / name / f"point_{k:03d}.vtm"
                 written[name].append((vtk.name, k))
             if name in references:
-                sol, cost = tamper.reference((name, V, load, label), metrics.measure, adapter, material, V, load,
-                                             cfg, vtk)
+                sol, cost = tamper.reference(
+                    (name, V, load, label), metrics.measure, adapter, material, V, load, cfg, vtk
+                )
             else:
                 m, v, p = tamper.inputs(name, material, V, load)
                 sol, cost = metrics.measure(adapter, m, v, p, cfg, vtk)
@@ -108,15 +112,26 @@ def solve_all(solvers, material, speeds, values, cfg, vtk_dir, root, out, tamper
 
 def _solve_all(material, s_values, cfg, vtk_dir, root, out, tamper, references=()):
     speeds = [_speed(material, s) for s in s_values]
-    return solve_all(SOLVERS, material, speeds, list(s_values), cfg, vtk_dir, root, out, tamper,
-                     references=references)
+    return solve_all(SOLVERS, material, speeds, list(s_values), cfg, vtk_dir, root, out, tamper, references=references)
 
 
 def _edge_checks(out, name, sol, ref_trail, ref_lead, label, tol, why):
-    out.check("leading_edge_error_elements", name, label,
-              metrics.edge_error(sol["leading_edge"], ref_lead, sol["spacing"]), tol, why)
-    out.check("trailing_edge_error_elements", name, label,
-              metrics.edge_error(sol["trailing_edge"], ref_trail, sol["spacing"]), tol, why)
+    out.check(
+        "leading_edge_error_elements",
+        name,
+        label,
+        metrics.edge_error(sol["leading_edge"], ref_lead, sol["spacing"]),
+        tol,
+        why,
+    )
+    out.check(
+        "trailing_edge_error_elements",
+        name,
+        label,
+        metrics.edge_error(sol["trailing_edge"], ref_trail, sol["spacing"]),
+        tol,
+        why,
+    )
 
 
 def _self_checks(out, name, label, sol, tol, why):
@@ -125,9 +140,14 @@ def _self_checks(out, name, label, sol, tol, why):
     if name == "fem":
         fem_self_checks(out, label, sol, tol["balance"], why["balance"])
     elif "friction_eq6" in tol:
-        out.check("friction_forms_rel_diff", name, label,
-                  metrics.rel_diff(sol["friction"], sol["result"].friction_eq6), tol["friction_eq6"],
-                  why["friction_eq6"])
+        out.check(
+            "friction_forms_rel_diff",
+            name,
+            label,
+            metrics.rel_diff(sol["friction"], sol["result"].friction_eq6),
+            tol["friction_eq6"],
+            why["friction_eq6"],
+        )
 
 
 def at_speed(settings, s):
@@ -163,27 +183,52 @@ def run_sls(ratio, *, quick, vtk_dir, root, tamper):
             # the leading-edge layer (width V tau) is resolved when it spans LAYER samples
             resolved = V * tau >= LAYER * sol["spacing"]
             layer = f"not judged: the leading-edge layer V tau = {V * tau:.2e} m spans < {LAYER} elements"
-            out.check("pressure_rel_l2", name, label, metrics.rel_l2(sol["x"], sol["pressure"], p_ex),
-                      tol["l2"] if resolved else tol["l2_layer"],
-                      why["l2"] if resolved else why["l2_layer"])
-            out.check("pressure_rel_max", name, label, metrics.rel_max(sol["pressure"], p_ex),
-                      tol["max"] if resolved else None, why["max"] if resolved else
-                      layer + " (a pointwise error at an unresolved jump is bounded only by the jump)")
-            out.check("friction_rel_error", name, label, metrics.rel_diff(sol["friction"], ex.friction),
-                      tol["friction"], why["friction"])
-            out.check("peak_pressure_rel_error", name, label,
-                      metrics.rel_diff(sol["peak_pressure"], ex.peak_pressure), tol["peak"] if resolved else None,
-                      why["peak"] if resolved else layer)
-            _edge_checks(out, name, sol, ex.trailing_edge, ex.leading_edge, label, tol["edge"],
-                         why["edge"])
+            out.check(
+                "pressure_rel_l2",
+                name,
+                label,
+                metrics.rel_l2(sol["x"], sol["pressure"], p_ex),
+                tol["l2"] if resolved else tol["l2_layer"],
+                why["l2"] if resolved else why["l2_layer"],
+            )
+            out.check(
+                "pressure_rel_max",
+                name,
+                label,
+                metrics.rel_max(sol["pressure"], p_ex),
+                tol["max"] if resolved else None,
+                why["max"]
+                if resolved
+                else layer + " (a pointwise error at an unresolved jump is bounded only by the jump)",
+            )
+            out.check(
+                "friction_rel_error",
+                name,
+                label,
+                metrics.rel_diff(sol["friction"], ex.friction),
+                tol["friction"],
+                why["friction"],
+            )
+            out.check(
+                "peak_pressure_rel_error",
+                name,
+                label,
+                metrics.rel_diff(sol["peak_pressure"], ex.peak_pressure),
+                tol["peak"] if resolved else None,
+                why["peak"] if resolved else layer,
+            )
+            _edge_checks(out, name, sol, ex.trailing_edge, ex.leading_edge, label, tol["edge"], why["edge"])
             _self_checks(out, name, label, sol, tol, why)
         xf = np.linspace(ex.trailing_edge - 0.3 * ex.half_width, ex.leading_edge + 0.3 * ex.half_width, 801)
         curves["exact"] = (xf, ex.pressure(xf))
-        out.profiles.append(Profile(label=f"{label}, V = {V:.3g} m/s", curves=curves, reference="exact",
-                                    errors=errors))
+        out.profiles.append(Profile(label=f"{label}, V = {V:.3g} m/s", curves=curves, reference="exact", errors=errors))
     s_dense = np.geomspace(min(s_values) / 2, max(s_values) * 2, 41)
-    curves = {"exact": (s_dense, np.array([hunter(material, radius=R, load=P, speed=_speed(material, s)).friction
-                                           for s in s_dense]))}
+    curves = {
+        "exact": (
+            s_dense,
+            np.array([hunter(material, radius=R, load=P, speed=_speed(material, s)).friction for s in s_dense]),
+        )
+    }
     curves.update({name: (np.array(s_values), np.array([r["friction"] for r in runs[name]])) for name in SOLVERS})
     # a failed solve has friction nan: the plot leaves a gap there
     out.sweeps.append(Sweep("friction against speed", "s = V lambda / a0", "friction coefficient", curves))
@@ -204,15 +249,33 @@ def _against_fem(out, cfg, name, b, f, label):
     mid = 0.5 * (edges[1:] + edges[:-1])
     t, why = cfg["tol"], cfg["why"]
     out.check("binned_pressure_rel_l2", pair, label, metrics.rel_l2(mid, pb, pf), t["l2"], why["l2"])
-    out.check("friction_rel_diff", pair, label, metrics.rel_diff(b["friction"], f["friction"]), t["friction"],
-              why["friction"])
-    out.check("leading_edge_diff_elements", pair, label, abs(b["leading_edge"] - f["leading_edge"]) / width,
-              t["edge"], why["edge"])
-    out.check("trailing_edge_diff_elements", pair, label, abs(b["trailing_edge"] - f["trailing_edge"]) / width,
-              t["edge"], why["edge"])
-    out.check("peak_pressure_rel_diff", pair, label, metrics.rel_diff(b["peak_pressure"], f["peak_pressure"]), None,
-              "not judged: Prony terms with V tau_k below the element size make leading-edge layers "
-              "neither grid resolves")
+    out.check(
+        "friction_rel_diff", pair, label, metrics.rel_diff(b["friction"], f["friction"]), t["friction"], why["friction"]
+    )
+    out.check(
+        "leading_edge_diff_elements",
+        pair,
+        label,
+        abs(b["leading_edge"] - f["leading_edge"]) / width,
+        t["edge"],
+        why["edge"],
+    )
+    out.check(
+        "trailing_edge_diff_elements",
+        pair,
+        label,
+        abs(b["trailing_edge"] - f["trailing_edge"]) / width,
+        t["edge"],
+        why["edge"],
+    )
+    out.check(
+        "peak_pressure_rel_diff",
+        pair,
+        label,
+        metrics.rel_diff(b["peak_pressure"], f["peak_pressure"]),
+        None,
+        "not judged: Prony terms with V tau_k below the element size make leading-edge layers neither grid resolves",
+    )
     return mid, pb, pf, width
 
 
@@ -224,11 +287,24 @@ def run_prony(*, quick, vtk_dir, root, tamper):
     s_values = cfg["s"]
     out = CaseOutput()
     bem_solvers = {n: a for n, a in SOLVERS.items() if n != "fem"}
-    runs = solve_all(bem_solvers, material, [_speed(material, s) for s in s_values], s_values, cfg, vtk_dir, root,
-                     out, tamper)
+    runs = solve_all(
+        bem_solvers, material, [_speed(material, s) for s in s_values], s_values, cfg, vtk_dir, root, out, tamper
+    )
     fem_s = cfg["fem_s"]
-    runs.update(solve_all({"fem": _fem}, material, [_speed(material, s) for s in fem_s], fem_s, cfg, vtk_dir, root,
-                          out, tamper, references=("fem",)))
+    runs.update(
+        solve_all(
+            {"fem": _fem},
+            material,
+            [_speed(material, s) for s in fem_s],
+            fem_s,
+            cfg,
+            vtk_dir,
+            root,
+            out,
+            tamper,
+            references=("fem",),
+        )
+    )
     for k, s in enumerate(s_values):
         V, label = _speed(material, s), f"s={s:g}"
         f = runs["fem"][fem_s.index(s)] if s in fem_s else None
@@ -237,39 +313,80 @@ def run_prony(*, quick, vtk_dir, root, tamper):
             fem_self_checks(out, label, f, cfg["tol"]["balance"], cfg["why"]["balance"])
         mu0 = low_speed_friction(material, radius=R, speed=V) if s <= cfg["asymptote_s"] else None
         if fem_ok and mu0 is not None:
-            out.check("low_speed_asymptote_rel_error", "fem", label, metrics.rel_diff(f["friction"], mu0),
-                      cfg["tol"]["asymptote"]["fem"], cfg["why"]["asymptote"]["fem"])
+            out.check(
+                "low_speed_asymptote_rel_error",
+                "fem",
+                label,
+                metrics.rel_diff(f["friction"], mu0),
+                cfg["tol"]["asymptote"]["fem"],
+                cfg["why"]["asymptote"]["fem"],
+            )
         for name in [n for n in SOLVERS if n != "fem"]:
             b = runs[name][k]
             if not out.converged(name, label, b):
                 continue
             if mu0 is not None:
-                out.check("low_speed_asymptote_rel_error", name, label, metrics.rel_diff(b["friction"], mu0),
-                          cfg["tol"]["asymptote"][name], cfg["why"]["asymptote"][name])
+                out.check(
+                    "low_speed_asymptote_rel_error",
+                    name,
+                    label,
+                    metrics.rel_diff(b["friction"], mu0),
+                    cfg["tol"]["asymptote"][name],
+                    cfg["why"]["asymptote"][name],
+                )
             if fem_ok:
                 mid, pb, pf, width = _against_fem(out, cfg, name, b, f, label)
-                out.profiles.append(Profile(label=f"{name} vs fem, {label}, V = {V:.3g} m/s (bin averages over "
-                                                  f"{width:.2e} m)", curves={name: (mid, pb), "fem": (mid, pf)},
-                                            reference="fem", errors={name: (mid, pb - pf)}))
-    out.sweeps.append(Sweep("friction against speed", "s = V lambda_max / a0", "friction coefficient",
-                            {name: (np.array(fem_s if name == "fem" else s_values),
-                                    np.array([r["friction"] for r in runs[name]])) for name in SOLVERS}))
-    out.numbers["material"] = dict(E0=material.E0, moduli=material.moduli.tolist(),
-                                   relaxation_times=material.relaxation_times.tolist())
+                out.profiles.append(
+                    Profile(
+                        label=f"{name} vs fem, {label}, V = {V:.3g} m/s (bin averages over {width:.2e} m)",
+                        curves={name: (mid, pb), "fem": (mid, pf)},
+                        reference="fem",
+                        errors={name: (mid, pb - pf)},
+                    )
+                )
+    out.sweeps.append(
+        Sweep(
+            "friction against speed",
+            "s = V lambda_max / a0",
+            "friction coefficient",
+            {
+                name: (np.array(fem_s if name == "fem" else s_values), np.array([r["friction"] for r in runs[name]]))
+                for name in SOLVERS
+            },
+        )
+    )
+    out.numbers["material"] = dict(
+        E0=material.E0, moduli=material.moduli.tolist(), relaxation_times=material.relaxation_times.tolist()
+    )
     out.numbers["speeds"] = [_speed(material, s) for s in s_values]
     return out
 
 
 CASES = [
-    Case("cylinder_sls_r3", "Rolling cylinder, standard linear solid, E_inf/E0 = 3",
-         "Rigid cylinder (R = 10 mm, 1000 N/m) rolling on the seed paper's SLS (E_inf = 10 MPa, "
-         "creep time 10 ms); BEM and FEM against Hunter's exact solution over speeds.",
-         ("exact", *SOLVERS), "exact", lambda **kw: run_sls(3, **kw)),
-    Case("cylinder_sls_r10", "Rolling cylinder, standard linear solid, E_inf/E0 = 10",
-         "As cylinder_sls_r3 with E0 = 1 MPa, E_inf = 10 MPa.",
-         ("exact", *SOLVERS), "exact", lambda **kw: run_sls(10, **kw)),
-    Case("cylinder_prony3", "Rolling cylinder, three-term Prony series",
-         "Prony series E0 = 1 MPa, three terms of 3 MPa at relaxation times 1e-3, 1e-2, 1e-1 s; BEM against FEM "
-         "(no exact solution) and the low-speed asymptote.",
-         tuple(SOLVERS), "fem", run_prony),
+    Case(
+        "cylinder_sls_r3",
+        "Rolling cylinder, standard linear solid, E_inf/E0 = 3",
+        "Rigid cylinder (R = 10 mm, 1000 N/m) rolling on the seed paper's SLS (E_inf = 10 MPa, "
+        "creep time 10 ms); BEM and FEM against Hunter's exact solution over speeds.",
+        ("exact", *SOLVERS),
+        "exact",
+        lambda **kw: run_sls(3, **kw),
+    ),
+    Case(
+        "cylinder_sls_r10",
+        "Rolling cylinder, standard linear solid, E_inf/E0 = 10",
+        "As cylinder_sls_r3 with E0 = 1 MPa, E_inf = 10 MPa.",
+        ("exact", *SOLVERS),
+        "exact",
+        lambda **kw: run_sls(10, **kw),
+    ),
+    Case(
+        "cylinder_prony3",
+        "Rolling cylinder, three-term Prony series",
+        "Prony series E0 = 1 MPa, three terms of 3 MPa at relaxation times 1e-3, 1e-2, 1e-1 s; BEM against FEM "
+        "(no exact solution) and the low-speed asymptote.",
+        tuple(SOLVERS),
+        "fem",
+        run_prony,
+    ),
 ]

@@ -11,17 +11,17 @@ error it was measured at."""
 _WHY_BEM = {
     "l2": "square-root edges: L2 error ~ dx/a; measured <= 1 % at 20 cells per a_inf; bound 2x",
     "l2_layer": "leading-edge layer V tau narrower than 5 cells: its pressure jump is smeared over a cell; "
-                "measured 1.3-1.4 % (40 cells, E_inf/E0 = 10, s = 0.1-0.3)",
+    "measured 1.3-1.4 % (40 cells, E_inf/E0 = 10, s = 0.1-0.3)",
     "max": "pointwise error next to a square-root edge ~ sqrt(dx/a) = 0.22 (20 cells), 0.16 (40)",
     "friction": "periodic images (a/L)^2 = 6e-4 plus O(dx^2); the friction falls like 1/s at high speed, so its "
-                "relative error grows: measured 2e-4 (s = 0.1) to 1.5e-3 (s = 100)",
+    "relative error grows: measured 2e-4 (s = 0.1) to 1.5e-3 (s = 100)",
     "peak": "flat maximum, O(dx^2); measured <= 0.1 %",
     "edge": "sampling error 1/2 cell plus the solver's; one cell",
 }
 _WHY_FEM = {
     "l2": "edge sampling at node spacing h/2: L2 error ~ h/a; measured 1.4-1.5 % at res 3",
     "l2_layer": "leading-edge layer V tau narrower than 5 elements, smeared over an element: measured 8.5 % "
-                "(E_inf/E0 = 10, res 2, s = 0.3), 6.8 % (res 4, s = 0.1)",
+    "(E_inf/E0 = 10, res 2, s = 0.3), 6.8 % (res 4, s = 0.1)",
     "max": "nodal pressures next to the square-root edge ~ sqrt(h/a)",
     "friction": "second order in h: measured 2.8 % (res 3) / 0.4 % (res 6) at s = 0.1 (E_inf/E0 = 3)",
     "peak": "measured 0.2-0.8 % at res 3-6 where the leading-edge layer is resolved",
@@ -33,8 +33,11 @@ _WHY_FEM = {
 # images. Measured at 20 / 40 cells over s = 0.01..100 (E_inf/E0 = 3, 10): L2 <= 1.2 % / 0.84 % (1.85 % with
 # an unresolved layer), max <= 0.12 / 0.073, peak <= 2.5e-4 where resolved, edges <= 0.67 cell; friction
 # <= 8e-4 for s >= 0.3, but 2-8e-3 at s = 0.01, where the friction is a pressure shift of a sixth of a cell.
-_WHY_ISO = dict(_WHY_BEM, friction="sub-cell shift of the pressure at low speed: measured <= 8e-4 for s >= 0.3, "
-                                   "2.4-8e-3 at s = 0.01 (uniform, adaptive; 20-40 cells)")
+_WHY_ISO = dict(
+    _WHY_BEM,
+    friction="sub-cell shift of the pressure at low speed: measured <= 8e-4 for s >= 0.3, "
+    "2.4-8e-3 at s = 0.01 (uniform, adaptive; 20-40 cells)",
+)
 
 
 _BALANCE_FULL, _BALANCE_FULL_WHY = None, "not judged: not measured at the full settings"
@@ -42,11 +45,23 @@ _BALANCE_FULL, _BALANCE_FULL_WHY = None, "not judged: not measured at the full s
 
 def _sls_cfg(s, cells, resolution, bem_tol, fem_tol, iso_tol):
     fem_tol = dict(fem_tol, balance=fem_tol.get("balance", _BALANCE_FULL))
-    return dict(s=s, cells=cells, resolution=resolution,
-                tol={"bem-periodic": bem_tol, "bem-isolated-uniform": iso_tol, "bem-isolated-adaptive": iso_tol,
-                     "fem": fem_tol},
-                why={"bem-periodic": _WHY_BEM, "bem-isolated-uniform": _WHY_ISO, "bem-isolated-adaptive": _WHY_ISO,
-                     "fem": dict(_WHY_FEM, balance=_BALANCE_FULL_WHY)})
+    return dict(
+        s=s,
+        cells=cells,
+        resolution=resolution,
+        tol={
+            "bem-periodic": bem_tol,
+            "bem-isolated-uniform": iso_tol,
+            "bem-isolated-adaptive": iso_tol,
+            "fem": fem_tol,
+        },
+        why={
+            "bem-periodic": _WHY_BEM,
+            "bem-isolated-uniform": _WHY_ISO,
+            "bem-isolated-adaptive": _WHY_ISO,
+            "fem": dict(_WHY_FEM, balance=_BALANCE_FULL_WHY),
+        },
+    )
 
 
 _ISO_QUICK = dict(l2=0.02, l2_layer=0.04, max=0.25, friction=3e-3, peak=5e-3, edge=1.0)
@@ -62,29 +77,55 @@ _ISO_FULL = dict(l2=0.01, l2_layer=0.02, max=0.2, friction=0.01, peak=3e-3, edge
 # against eq. 6) <= 5.7e-4 (periodic), 1.19e-3 (isolated).
 _WHY_FEM_Q3 = dict(
     _WHY_FEM,
-    l2="measured 1.53 % (res 3, s = 3); margin 1.6x", l2_layer="measured 1.38 % (res 3, s = 0.3); margin 1.8x",
-    max="measured 3.0e-2 (res 3, s = 3); margin 1.7x", edge="measured <= 0.21 element (res 3); margin 2.4x",
-    friction={0.3: "measured 1.79 % (res 3, s = 0.3: the leading-edge layer spans one node); margin 1.7x",
-              3.0: "measured 2.2e-3 (res 3, s = 3); margin 2.2x"},
+    l2="measured 1.53 % (res 3, s = 3); margin 1.6x",
+    l2_layer="measured 1.38 % (res 3, s = 0.3); margin 1.8x",
+    max="measured 3.0e-2 (res 3, s = 3); margin 1.7x",
+    edge="measured <= 0.21 element (res 3); margin 2.4x",
+    friction={
+        0.3: "measured 1.79 % (res 3, s = 0.3: the leading-edge layer spans one node); margin 1.7x",
+        3.0: "measured 2.2e-3 (res 3, s = 3); margin 2.2x",
+    },
     peak="measured 3.0e-3 (res 3, s = 3); margin 1.7x",
-    balance={0.3: "field dissipation against mu P V: measured 2.43 % (res 3, s = 0.3); margin 1.6x",
-             3.0: "field dissipation against mu P V: measured 0.83 % (res 3, s = 3); margin 1.8x"})
-_FEM_Q3 = dict(l2=0.025, l2_layer=0.025, max=0.05, friction={0.3: 0.03, 3.0: 5e-3}, peak=5e-3, edge=0.5,
-               balance={0.3: 0.04, 3.0: 0.015})
-_FORMS_WHY = ("dissipation form against eq. 6 (moment of p h'): they differ at the resolution of the edges; "
-              "measured <= 5.7e-4 (periodic), 1.19e-3 (isolated) at 20 cells; margin 2.5x")
-_WHY_BEM_Q3 = dict(_WHY_BEM, l2="measured 3.8e-3 (20 cells, s = 3); margin 2.1x",
-                   l2_layer="measured 1.0 % (20 cells, s = 0.3); margin 2x", max="measured 1.9e-2 (s = 3); margin 2.1x",
-                   friction="measured 7.7e-4 (s = 0.3), 1.5e-3 (s = 3: periodic images); margin 2x",
-                   peak="measured 4.9e-5 (s = 3), 3.8e-4 (s = 0.3, not judged); margin 2.6x over the larger",
-                   edge="measured <= 0.38 cell; margin 2x", friction_eq6=_FORMS_WHY)
+    balance={
+        0.3: "field dissipation against mu P V: measured 2.43 % (res 3, s = 0.3); margin 1.6x",
+        3.0: "field dissipation against mu P V: measured 0.83 % (res 3, s = 3); margin 1.8x",
+    },
+)
+_FEM_Q3 = dict(
+    l2=0.025,
+    l2_layer=0.025,
+    max=0.05,
+    friction={0.3: 0.03, 3.0: 5e-3},
+    peak=5e-3,
+    edge=0.5,
+    balance={0.3: 0.04, 3.0: 0.015},
+)
+_FORMS_WHY = (
+    "dissipation form against eq. 6 (moment of p h'): they differ at the resolution of the edges; "
+    "measured <= 5.7e-4 (periodic), 1.19e-3 (isolated) at 20 cells; margin 2.5x"
+)
+_WHY_BEM_Q3 = dict(
+    _WHY_BEM,
+    l2="measured 3.8e-3 (20 cells, s = 3); margin 2.1x",
+    l2_layer="measured 1.0 % (20 cells, s = 0.3); margin 2x",
+    max="measured 1.9e-2 (s = 3); margin 2.1x",
+    friction="measured 7.7e-4 (s = 0.3), 1.5e-3 (s = 3: periodic images); margin 2x",
+    peak="measured 4.9e-5 (s = 3), 3.8e-4 (s = 0.3, not judged); margin 2.6x over the larger",
+    edge="measured <= 0.38 cell; margin 2x",
+    friction_eq6=_FORMS_WHY,
+)
 _BEM_Q3 = dict(l2=8e-3, l2_layer=0.02, max=0.04, friction=3e-3, peak=1e-3, edge=0.75, friction_eq6=3e-3)
-_WHY_ISO_Q3 = dict(_WHY_ISO, l2="measured 6.0e-3 (20 cells, s = 3); margin 2x",
-                   l2_layer="measured 6.2e-3 (s = 0.3); margin 1.9x", max="measured 3.0e-2 (s = 3); margin 2x",
-                   friction="measured 7.8e-4 (s = 0.3), 4.3e-5 (s = 3); margin 2.6x",
-                   peak="measured 4.2e-5 (s = 3), 3.5e-5 (s = 0.3, not judged); margin 24x (a cell's worth of "
-                        "the 2-5 % input errors is 0.2-1 %)",
-                   edge="measured <= 0.66 cell; one cell", friction_eq6=_FORMS_WHY)
+_WHY_ISO_Q3 = dict(
+    _WHY_ISO,
+    l2="measured 6.0e-3 (20 cells, s = 3); margin 2x",
+    l2_layer="measured 6.2e-3 (s = 0.3); margin 1.9x",
+    max="measured 3.0e-2 (s = 3); margin 2x",
+    friction="measured 7.8e-4 (s = 0.3), 4.3e-5 (s = 3); margin 2.6x",
+    peak="measured 4.2e-5 (s = 3), 3.5e-5 (s = 0.3, not judged); margin 24x (a cell's worth of "
+    "the 2-5 % input errors is 0.2-1 %)",
+    edge="measured <= 0.66 cell; one cell",
+    friction_eq6=_FORMS_WHY,
+)
 _ISO_Q3 = dict(l2=0.012, l2_layer=0.012, max=0.06, friction=2e-3, peak=1e-3, edge=1.0, friction_eq6=3e-3)
 
 
@@ -95,24 +136,35 @@ _ISO_Q3 = dict(l2=0.012, l2_layer=0.012, max=0.06, friction=2e-3, peak=1e-3, edg
 # 1.3e-4, L2 1.85e-2 / 9.1e-3, max - / 4.5e-2, peak - / 2.5e-4, edges <= 0.37 cell, forms <= 1.6e-4.
 _FEM_Q10 = dict(l2=0.08, l2_layer=0.15, max=0.4, friction={0.3: 4e-3, 3.0: 6e-3}, peak=0.03, edge=0.5, balance=0.01)
 _WHY_FEM_Q10 = dict(
-    _WHY_FEM, l2_layer="layer V tau < 5 nodes: measured 8.5 % (res 2, s = 0.3), 3.7 % (s = 3); margin 1.8x",
+    _WHY_FEM,
+    l2_layer="layer V tau < 5 nodes: measured 8.5 % (res 2, s = 0.3), 3.7 % (s = 3); margin 1.8x",
     edge="measured <= 0.23 element (res 2); margin 2.2x",
     friction={0.3: "measured 1.6e-3 (res 2, s = 0.3); margin 2.5x", 3.0: "measured 2.7e-3 (res 2, s = 3); margin 2.2x"},
-    balance="field dissipation against mu P V: measured 5.5e-3 / 5.2e-3 (res 2, s = 0.3 / 3); margin 1.8x")
+    balance="field dissipation against mu P V: measured 5.5e-3 / 5.2e-3 (res 2, s = 0.3 / 3); margin 1.8x",
+)
 _FORMS_WHY_10 = "dissipation form against eq. 6: measured <= 2.3e-4 (20 cells, E_inf/E0 = 10); margin 2.6x"
 _BEM_Q10 = dict(l2=6e-3, l2_layer=0.012, max=0.025, friction=2e-3, peak=1e-3, edge=1.0, friction_eq6=6e-4)
-_WHY_BEM_Q10 = dict(_WHY_BEM, l2="measured 2.6e-3 (20 cells, s = 3); margin 2.3x",
-                    l2_layer="measured 5.1e-3 (s = 0.3); margin 2.3x", max="measured 1.1e-2 (s = 3); margin 2.3x",
-                    friction="measured 1.0e-4 (s = 0.3), 9.6e-4 (s = 3: periodic images); margin 2.1x",
-                    peak="measured 4.2e-4 (s = 3); margin 2.4x", edge="measured <= 0.52 cell; one cell",
-                    friction_eq6=_FORMS_WHY_10)
+_WHY_BEM_Q10 = dict(
+    _WHY_BEM,
+    l2="measured 2.6e-3 (20 cells, s = 3); margin 2.3x",
+    l2_layer="measured 5.1e-3 (s = 0.3); margin 2.3x",
+    max="measured 1.1e-2 (s = 3); margin 2.3x",
+    friction="measured 1.0e-4 (s = 0.3), 9.6e-4 (s = 3: periodic images); margin 2.1x",
+    peak="measured 4.2e-4 (s = 3); margin 2.4x",
+    edge="measured <= 0.52 cell; one cell",
+    friction_eq6=_FORMS_WHY_10,
+)
 _ISO_Q10 = dict(l2=0.02, l2_layer=0.04, max=0.1, friction=2e-3, peak=1e-3, edge=0.75, friction_eq6=6e-4)
-_WHY_ISO_Q10 = dict(_WHY_ISO, l2="measured 9.1e-3 (20 cells, s = 3); margin 2.2x",
-                    l2_layer="measured 1.85 % (s = 0.3); margin 2.2x", max="measured 4.5e-2 (s = 3); margin 2.2x",
-                    friction="measured 1.9e-4 (s = 0.3), 1.3e-4 (s = 3); margin 10x (the 2-5 % input errors move "
-                             "it by >= 1.5e-3)",
-                    peak="measured 2.5e-4 (s = 3); margin 4x", edge="measured <= 0.37 cell; margin 2x",
-                    friction_eq6=_FORMS_WHY_10)
+_WHY_ISO_Q10 = dict(
+    _WHY_ISO,
+    l2="measured 9.1e-3 (20 cells, s = 3); margin 2.2x",
+    l2_layer="measured 1.85 % (s = 0.3); margin 2.2x",
+    max="measured 4.5e-2 (s = 3); margin 2.2x",
+    friction="measured 1.9e-4 (s = 0.3), 1.3e-4 (s = 3); margin 10x (the 2-5 % input errors move it by >= 1.5e-3)",
+    peak="measured 2.5e-4 (s = 3); margin 4x",
+    edge="measured <= 0.37 cell; margin 2x",
+    friction_eq6=_FORMS_WHY_10,
+)
 
 
 def _cfg(s, cells, resolution, tol, why):
@@ -120,24 +172,53 @@ def _cfg(s, cells, resolution, tol, why):
 
 
 QUICK_SLS = {
-    3: _cfg([0.3, 3.0], 20, 3,
-            {"bem-periodic": _BEM_Q3, "bem-isolated-uniform": _ISO_Q3, "bem-isolated-adaptive": _ISO_Q3,
-             "fem": _FEM_Q3},
-            {"bem-periodic": _WHY_BEM_Q3, "bem-isolated-uniform": _WHY_ISO_Q3, "bem-isolated-adaptive": _WHY_ISO_Q3,
-             "fem": _WHY_FEM_Q3}),
-    10: _cfg([0.3, 3.0], 20, 2,
-             {"bem-periodic": _BEM_Q10, "bem-isolated-uniform": _ISO_Q10, "bem-isolated-adaptive": _ISO_Q10,
-              "fem": _FEM_Q10},
-             {"bem-periodic": _WHY_BEM_Q10, "bem-isolated-uniform": _WHY_ISO_Q10,
-              "bem-isolated-adaptive": _WHY_ISO_Q10, "fem": _WHY_FEM_Q10}),
+    3: _cfg(
+        [0.3, 3.0],
+        20,
+        3,
+        {"bem-periodic": _BEM_Q3, "bem-isolated-uniform": _ISO_Q3, "bem-isolated-adaptive": _ISO_Q3, "fem": _FEM_Q3},
+        {
+            "bem-periodic": _WHY_BEM_Q3,
+            "bem-isolated-uniform": _WHY_ISO_Q3,
+            "bem-isolated-adaptive": _WHY_ISO_Q3,
+            "fem": _WHY_FEM_Q3,
+        },
+    ),
+    10: _cfg(
+        [0.3, 3.0],
+        20,
+        2,
+        {
+            "bem-periodic": _BEM_Q10,
+            "bem-isolated-uniform": _ISO_Q10,
+            "bem-isolated-adaptive": _ISO_Q10,
+            "fem": _FEM_Q10,
+        },
+        {
+            "bem-periodic": _WHY_BEM_Q10,
+            "bem-isolated-uniform": _WHY_ISO_Q10,
+            "bem-isolated-adaptive": _WHY_ISO_Q10,
+            "fem": _WHY_FEM_Q10,
+        },
+    ),
 }
 FULL_SLS = {
-    3: _sls_cfg([0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0], 40, 6,
-                dict(l2=0.01, l2_layer=0.02, max=0.2, friction=3e-3, peak=3e-3, edge=1.0),
-                dict(l2=0.03, l2_layer=0.1, max=0.25, friction=0.01, peak=0.01, edge=1.0), _ISO_FULL),
-    10: _sls_cfg([0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0], 40, 4,
-                 dict(l2=0.01, l2_layer=0.02, max=0.2, friction=3e-3, peak=3e-3, edge=1.0),
-                 dict(l2=0.05, l2_layer=0.1, max=0.3, friction=0.02, peak=0.02, edge=1.0), _ISO_FULL),
+    3: _sls_cfg(
+        [0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0],
+        40,
+        6,
+        dict(l2=0.01, l2_layer=0.02, max=0.2, friction=3e-3, peak=3e-3, edge=1.0),
+        dict(l2=0.03, l2_layer=0.1, max=0.25, friction=0.01, peak=0.01, edge=1.0),
+        _ISO_FULL,
+    ),
+    10: _sls_cfg(
+        [0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0],
+        40,
+        4,
+        dict(l2=0.01, l2_layer=0.02, max=0.2, friction=3e-3, peak=3e-3, edge=1.0),
+        dict(l2=0.05, l2_layer=0.1, max=0.3, friction=0.02, peak=0.02, edge=1.0),
+        _ISO_FULL,
+    ),
 }
 _WHY_PRONY = {
     "l2": "sum of both solvers' L2 errors on the SLS cases at these resolutions, bin-averaged",
@@ -160,17 +241,43 @@ _WHY_PRONY_QUICK = dict(
     friction="measured 6.3e-3 (isolated) / 7.2e-3 (periodic) against the FEM at res 2; margin 1.7x",
     edge="measured <= 0.15 element; margin 2.7x",
     balance="field dissipation against mu P V at res 2, grading 2: measured 1.73 %; margin 1.7x",
-    asymptote=dict(_WHY_PRONY["asymptote"],
-                   **{"bem-periodic": "measured 6.9e-3 at s = 0.01 (20 cells; next-order term ~ s); margin 1.7x",
-                      "bem-isolated-uniform": "measured 5.5e-4 at s = 0.01 (20 cells); margin 5.4x",
-                      "bem-isolated-adaptive": "measured 5.5e-4 at s = 0.01 (20 cells); margin 5.4x"}))
-QUICK_PRONY = dict(s=[0.01, 1.0], fem_s=[1.0], cells=20, resolution=2, fem_options=dict(grading=2.0),
-                   asymptote_s=0.01, why=_WHY_PRONY_QUICK,
-                   tol=dict(l2=0.025, friction=0.012, edge=0.4, balance=0.03,
-                            asymptote={"bem-periodic": 0.012, "bem-isolated-uniform": 3e-3,
-                                       "bem-isolated-adaptive": 3e-3, "fem": 0.05}))
-FULL_PRONY = dict(s=[0.01, 0.1, 0.3, 1.0, 3.0, 10.0], fem_s=[0.01, 0.1, 0.3, 1.0, 3.0, 10.0], cells=40, resolution=4,
-                  asymptote_s=0.01, why=dict(_WHY_PRONY, balance=_BALANCE_FULL_WHY),
-                  tol=dict(l2=0.05, friction=0.02, edge=2.0, balance=_BALANCE_FULL,
-                           asymptote={"bem-periodic": 0.02, "bem-isolated-uniform": 0.02,
-                                      "bem-isolated-adaptive": 0.02, "fem": 0.03}))
+    asymptote=dict(
+        _WHY_PRONY["asymptote"],
+        **{
+            "bem-periodic": "measured 6.9e-3 at s = 0.01 (20 cells; next-order term ~ s); margin 1.7x",
+            "bem-isolated-uniform": "measured 5.5e-4 at s = 0.01 (20 cells); margin 5.4x",
+            "bem-isolated-adaptive": "measured 5.5e-4 at s = 0.01 (20 cells); margin 5.4x",
+        },
+    ),
+)
+QUICK_PRONY = dict(
+    s=[0.01, 1.0],
+    fem_s=[1.0],
+    cells=20,
+    resolution=2,
+    fem_options=dict(grading=2.0),
+    asymptote_s=0.01,
+    why=_WHY_PRONY_QUICK,
+    tol=dict(
+        l2=0.025,
+        friction=0.012,
+        edge=0.4,
+        balance=0.03,
+        asymptote={"bem-periodic": 0.012, "bem-isolated-uniform": 3e-3, "bem-isolated-adaptive": 3e-3, "fem": 0.05},
+    ),
+)
+FULL_PRONY = dict(
+    s=[0.01, 0.1, 0.3, 1.0, 3.0, 10.0],
+    fem_s=[0.01, 0.1, 0.3, 1.0, 3.0, 10.0],
+    cells=40,
+    resolution=4,
+    asymptote_s=0.01,
+    why=dict(_WHY_PRONY, balance=_BALANCE_FULL_WHY),
+    tol=dict(
+        l2=0.05,
+        friction=0.02,
+        edge=2.0,
+        balance=_BALANCE_FULL,
+        asymptote={"bem-periodic": 0.02, "bem-isolated-uniform": 0.02, "bem-isolated-adaptive": 0.02, "fem": 0.03},
+    ),
+)

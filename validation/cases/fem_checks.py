@@ -10,6 +10,7 @@ as the fields satisfy it, and the linear solve.
   complementarity residual with the gap taken from the final displacement field.
 - ``linear_solve_residual``: ``||K u - f|| / ||f||`` of the factorised solve, whichever solver ran.
 """
+
 from __future__ import annotations
 
 __all__ = ["fem_self_checks", "CONTACT_TOL", "LINEAR_TOL"]
@@ -18,8 +19,10 @@ __all__ = ["fem_self_checks", "CONTACT_TOL", "LINEAR_TOL"]
 # E_inf/E0 = 3, s = 0.3 and 3, every sensitivity perturbation), 1.4e-8 (three Prony terms, grading 2,
 # 40k unknowns). A factor of 7 above the largest.
 CONTACT_TOL = 1e-7
-CONTACT_WHY = ("gap from the field solve (SuperLU): measured 5e-11 to 2.7e-9 (SLS, res 3), 1.4e-8 (three Prony "
-               "terms, grading 2); margin 7x")
+CONTACT_WHY = (
+    "gap from the field solve (SuperLU): measured 5e-11 to 2.7e-9 (SLS, res 3), 1.4e-8 (three Prony "
+    "terms, grading 2); margin 7x"
+)
 LINEAR_TOL = 1e-8
 LINEAR_WHY = "a direct solve with iterative refinement reaches round-off times the conditioning (~1e-12)"
 
@@ -27,11 +30,23 @@ LINEAR_WHY = "a direct solve with iterative refinement reaches round-off times t
 def fem_self_checks(out, label, sol, balance_tol, balance_why, solver="fem"):
     """Append the three self-checks of the FEM adapter output ``sol`` (see module docstring)."""
     if sol["power_moment"] > 0:
-        out.check("dissipation_balance_rel_diff", solver, label,
-                  abs(sol["power_fields"] - sol["power_moment"]) / sol["power_moment"], balance_tol, balance_why)
+        out.check(
+            "dissipation_balance_rel_diff",
+            solver,
+            label,
+            abs(sol["power_fields"] - sol["power_moment"]) / sol["power_moment"],
+            balance_tol,
+            balance_why,
+        )
     out.check("contact_residual_from_fields", solver, label, sol["contact_residual"], CONTACT_TOL, CONTACT_WHY)
     if sol["linear_residual"] is not None:
         out.check("linear_solve_residual", solver, label, sol["linear_residual"], LINEAR_TOL, LINEAR_WHY)
     else:
-        out.check("linear_solve_residual", solver, label, float("nan"), None,
-                  "not judged: this FEM build does not report the residual of its linear solve")
+        out.check(
+            "linear_solve_residual",
+            solver,
+            label,
+            float("nan"),
+            None,
+            "not judged: this FEM build does not report the residual of its linear solve",
+        )

@@ -5,6 +5,7 @@ Solver: ``bem-periodic`` (:func:`bem.solve`). References: ``exact`` (Fourier ful
 solution and Westergaard, :mod:`validation.periodic_exact`, :mod:`validation.westergaard`)
 and ``dense`` (explicit influence matrix and Murty's principal pivoting).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -50,22 +51,39 @@ def run_full_contact(*, quick, vtk_dir, root, tamper):
             m, v, load = tamper.inputs("bem-periodic", material, V, p_mean * L**dim)
             res, cost = metrics.measure(bem.solve, s, m, speed=v, load=load, rtol=1e-10)
             out.cost("bem-periodic", label, cost, f"{n}^{dim} points")
-            out.check("pressure_rel_max", "bem-periodic", label, metrics.rel_max(res.pressure, p_ex),
-                      cfg["tol"], WHY)
-            out.check("friction_rel_error", "bem-periodic", label, metrics.rel_diff(res.friction, mu_ex), cfg["tol"], WHY)
-            out.check("friction_eq6_rel_error", "bem-periodic", label, metrics.rel_diff(res.friction_eq6, mu_ex),
-                      cfg["tol"], WHY)
+            out.check("pressure_rel_max", "bem-periodic", label, metrics.rel_max(res.pressure, p_ex), cfg["tol"], WHY)
+            out.check(
+                "friction_rel_error", "bem-periodic", label, metrics.rel_diff(res.friction, mu_ex), cfg["tol"], WHY
+            )
+            out.check(
+                "friction_eq6_rel_error",
+                "bem-periodic",
+                label,
+                metrics.rel_diff(res.friction_eq6, mu_ex),
+                cfg["tol"],
+                WHY,
+            )
             sols.append(dict(surface=s, result=res, material=m))
             mu_b.append(res.friction)
             mu_e.append(mu_ex)
             if xi == cfg["xi"][len(cfg["xi"]) // 2]:
                 x = np.arange(n) * L / n
-                out.profiles.append(Profile(f"{label} (line y = 0)", {
-                    "exact": (x, _line(p_ex)), "bem-periodic": (x, _line(res.pressure))}, reference="exact",
-                    errors={"bem-periodic": (x, _line(res.pressure - p_ex))}))
-        out.sweeps.append(Sweep(f"friction against speed, {dim}-D n = {n}", "xi = V lambda / L", "friction",
-                                {"exact": (np.array(cfg["xi"]), np.array(mu_e)),
-                                 "bem-periodic": (np.array(cfg["xi"]), np.array(mu_b))}))
+                out.profiles.append(
+                    Profile(
+                        f"{label} (line y = 0)",
+                        {"exact": (x, _line(p_ex)), "bem-periodic": (x, _line(res.pressure))},
+                        reference="exact",
+                        errors={"bem-periodic": (x, _line(res.pressure - p_ex))},
+                    )
+                )
+        out.sweeps.append(
+            Sweep(
+                f"friction against speed, {dim}-D n = {n}",
+                "xi = V lambda / L",
+                "friction",
+                {"exact": (np.array(cfg["xi"]), np.array(mu_e)), "bem-periodic": (np.array(cfg["xi"]), np.array(mu_b))},
+            )
+        )
         if vtk_dir is not None:
             out.files += write_bem_sweep(vtk_dir / f"bem_{dim}d", root, sols, cfg["xi"])
     return out
@@ -90,23 +108,52 @@ def run_westergaard(*, quick, vtk_dir, root, tamper):
         p_ex = ex.pressure(x)
         dx = L / n
         t = cfg["tol"]
-        out.check("pressure_rel_l2", "bem-periodic", label, metrics.rel_l2(None, res.pressure, p_ex), t["l2"] / n,
-                  WHY_WEST["l2"])
-        out.check("pressure_rel_max", "bem-periodic", label, metrics.rel_max(res.pressure, p_ex),
-                  t["max"] / np.sqrt(n), WHY_WEST["max"])
-        out.check("peak_pressure_rel_error", "bem-periodic", label, metrics.rel_diff(res.pressure.max(), p_ex.max()),
-                  t["peak"] / n, WHY_WEST["peak"])
+        out.check(
+            "pressure_rel_l2",
+            "bem-periodic",
+            label,
+            metrics.rel_l2(None, res.pressure, p_ex),
+            t["l2"] / n,
+            WHY_WEST["l2"],
+        )
+        out.check(
+            "pressure_rel_max",
+            "bem-periodic",
+            label,
+            metrics.rel_max(res.pressure, p_ex),
+            t["max"] / np.sqrt(n),
+            WHY_WEST["max"],
+        )
+        out.check(
+            "peak_pressure_rel_error",
+            "bem-periodic",
+            label,
+            metrics.rel_diff(res.pressure.max(), p_ex.max()),
+            t["peak"] / n,
+            WHY_WEST["peak"],
+        )
         if not ex.full_contact:
             # centred view: the crest at x = 0, contact [-a, a]
             xc = np.where(x > L / 2, x - L, x)
             order = np.argsort(xc)
             trail, lead = metrics.sampled_edges(xc[order], res.pressure[order])
-            out.check("half_width_error_cells", "bem-periodic", label,
-                      metrics.edge_error(0.5 * (lead - trail), ex.half_width, dx), t["edge"], WHY_WEST["edge"])
+            out.check(
+                "half_width_error_cells",
+                "bem-periodic",
+                label,
+                metrics.edge_error(0.5 * (lead - trail), ex.half_width, dx),
+                t["edge"],
+                WHY_WEST["edge"],
+            )
         xs = np.roll(np.where(x >= L / 2, x - L, x), n // 2)
-        out.profiles.append(Profile(label, {"exact": (xs, np.roll(p_ex, n // 2)),
-                                            "bem-periodic": (xs, np.roll(res.pressure, n // 2))},
-                                    reference="exact", errors={"bem-periodic": (xs, np.roll(res.pressure - p_ex, n // 2))}))
+        out.profiles.append(
+            Profile(
+                label,
+                {"exact": (xs, np.roll(p_ex, n // 2)), "bem-periodic": (xs, np.roll(res.pressure, n // 2))},
+                reference="exact",
+                errors={"bem-periodic": (xs, np.roll(res.pressure - p_ex, n // 2))},
+            )
+        )
         sols.append(dict(surface=surface, result=res, material=m))
     if vtk_dir is not None:
         out.files += write_bem_sweep(vtk_dir / "bem", root, sols, cfg["fractions"])
@@ -121,24 +168,36 @@ def run_dense(*, quick, vtk_dir, root, tamper):
     for dim, n, overlap in cfg["grids"]:
         s = _rough(n, dim, seed=3)
         label = f"{dim}-D n={n}"
-        (p, delta, pivots), cost = tamper.reference(("dense", dim, n), metrics.measure, dense_contact, s.heights, L,
-                                                    material, overlap * np.ptp(s.heights))
+        (p, delta, pivots), cost = tamper.reference(
+            ("dense", dim, n), metrics.measure, dense_contact, s.heights, L, material, overlap * np.ptp(s.heights)
+        )
         out.cost("dense", label, cost, f"{n}^{dim} unknowns, {pivots} pivots")
         load = float(p.mean() * L**dim)
         m, v, load = tamper.inputs("bem-periodic", material, 0.0, load)
         res, cost = metrics.measure(bem.solve, s, m, speed=v, load=load, rtol=1e-12)
         out.cost("bem-periodic", label, cost, f"{res.iterations} iterations")
         out.check("pressure_rel_max", "bem-periodic", label, metrics.rel_max(res.pressure, p), cfg["tol"], WHY_DENSE)
-        out.check("approach_rel_error", "bem-periodic", label, metrics.rel_diff(res.approach, delta), cfg["tol"],
-                  WHY_DENSE)
-        out.check("contact_set_mismatch_points", "bem-periodic", label,
-                  float(np.count_nonzero((res.pressure > 0) != (p > 0))), 0.0,
-                  "the LCP solution is unique (P-matrix): the same contact set, exactly")
+        out.check(
+            "approach_rel_error", "bem-periodic", label, metrics.rel_diff(res.approach, delta), cfg["tol"], WHY_DENSE
+        )
+        out.check(
+            "contact_set_mismatch_points",
+            "bem-periodic",
+            label,
+            float(np.count_nonzero((res.pressure > 0) != (p > 0))),
+            0.0,
+            "the LCP solution is unique (P-matrix): the same contact set, exactly",
+        )
         out.numbers[label] = dict(contact_fraction=float(np.mean(p > 0)), pivots=int(pivots))
         x = np.arange(n) * L / n
-        out.profiles.append(Profile(f"{label} (line y = 0)", {"dense": (x, _line(p)),
-                                                             "bem-periodic": (x, _line(res.pressure))},
-                                    reference="dense", errors={"bem-periodic": (x, _line(res.pressure - p))}))
+        out.profiles.append(
+            Profile(
+                f"{label} (line y = 0)",
+                {"dense": (x, _line(p)), "bem-periodic": (x, _line(res.pressure))},
+                reference="dense",
+                errors={"bem-periodic": (x, _line(res.pressure - p))},
+            )
+        )
         sols.append(dict(surface=s, result=res, material=m))
     if vtk_dir is not None:
         out.files += write_bem_sweep(vtk_dir / "bem", root, sols, list(range(len(sols))))
@@ -146,11 +205,13 @@ def run_dense(*, quick, vtk_dir, root, tamper):
 
 
 # --------------------------------------------------------------------------- settings and tolerances
-WHY = ("the same Fourier solution: the BEM's full contact set is exact, so only round-off and its "
-       "residual (rtol 1e-10) remain; measured <= 1e-12")
+WHY = (
+    "the same Fourier solution: the BEM's full contact set is exact, so only round-off and its "
+    "residual (rtol 1e-10) remain; measured <= 1e-12"
+)
 QUICK_FULL = dict(grids=[(1, 256), (2, 64)], xi=[1e-2, 1e-1, 1.0], tol=1e-8)
 FULL_FULL = dict(grids=[(1, 4096), (2, 256)], xi=[1e-3, 1e-2, 1e-1, 1.0, 10.0], tol=1e-8)
-# Westergaard (SPEC §2.2 elastic): the sampled square-root edge gives an L2 error ~ 0.86/n (tests:
+# Westergaard (docs/theory.md §3 elastic): the sampled square-root edge gives an L2 error ~ 0.86/n (tests:
 # slope -1.00) and a pointwise one ~ C / sqrt(n) next to the edge; bounds 3/n and 2/sqrt(n).
 WHY_WEST = {
     "l2": "first order in dx (measured err * n = 0.86 at a = lam/4); bound 3/n",
@@ -160,19 +221,38 @@ WHY_WEST = {
 }
 QUICK_WEST = dict(n=256, fractions=[0.1, 0.5, 0.9, 1.5], tol=dict(l2=3.0, max=2.0, peak=2.0, edge=1.0))
 FULL_WEST = dict(n=4096, fractions=[0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 1.5], tol=dict(l2=3.0, max=2.0, peak=2.0, edge=1.0))
-WHY_DENSE = ("same discrete LCP (unique solution), BEM at rtol 1e-12: differences are the iterative "
-             "solve's tolerance times the conditioning; measured <= 1e-11 (tests: <= 6e-12)")
+WHY_DENSE = (
+    "same discrete LCP (unique solution), BEM at rtol 1e-12: differences are the iterative "
+    "solve's tolerance times the conditioning; measured <= 1e-11 (tests: <= 6e-12)"
+)
 QUICK_DENSE = dict(grids=[(1, 64, 0.5), (2, 24, 0.3)], tol=1e-7)
 FULL_DENSE = dict(grids=[(1, 256, 0.5), (2, 24, 0.3), (2, 32, 0.45)], tol=1e-7)
 
 CASES = [
-    Case("full_contact_rough", "Rough surface in full contact (viscoelastic, exact Fourier solution)",
-         "Self-affine surface (H = 0.8) pressed into full contact on the seed SLS; the pressure and friction "
-         "are exact in Fourier space at every speed.", ("exact", "bem-periodic"), "exact", run_full_contact),
-    Case("westergaard", "Westergaard's sinusoid (elastic)",
-         "Rigid sinusoid (1 um amplitude, 1 mm wavelength) on an elastic half-space, partial and full contact.",
-         ("exact", "bem-periodic"), "exact", run_westergaard),
-    Case("elastic_rough_dense", "Elastic rough contact against a dense direct solve",
-         "Self-affine surface on an elastic half-space, small grids: the BEM against an explicit influence "
-         "matrix solved by Murty's principal pivoting.", ("dense", "bem-periodic"), "dense", run_dense),
+    Case(
+        "full_contact_rough",
+        "Rough surface in full contact (viscoelastic, exact Fourier solution)",
+        "Self-affine surface (H = 0.8) pressed into full contact on the seed SLS; the pressure and friction "
+        "are exact in Fourier space at every speed.",
+        ("exact", "bem-periodic"),
+        "exact",
+        run_full_contact,
+    ),
+    Case(
+        "westergaard",
+        "Westergaard's sinusoid (elastic)",
+        "Rigid sinusoid (1 um amplitude, 1 mm wavelength) on an elastic half-space, partial and full contact.",
+        ("exact", "bem-periodic"),
+        "exact",
+        run_westergaard,
+    ),
+    Case(
+        "elastic_rough_dense",
+        "Elastic rough contact against a dense direct solve",
+        "Self-affine surface on an elastic half-space, small grids: the BEM against an explicit influence "
+        "matrix solved by Murty's principal pivoting.",
+        ("dense", "bem-periodic"),
+        "dense",
+        run_dense,
+    ),
 ]

@@ -13,6 +13,7 @@ reference solved on the FEM's material, which is the case's rubber where the FEM
 and a smaller one otherwise (``FULL["fem"]["material"]``, said in the report's notes).
 Pressures are compared as bin averages over the coarser spacing (:mod:`validation.metrics`).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -31,13 +32,15 @@ R, P = 0.02, 1500.0
 def rubber(ratio, terms, tmin, tmax=1e-1, E0=1e6):
     """Prony series: ``terms`` equal moduli summing to ``(ratio - 1) E0``, times log-spaced in
     ``[tmin, tmax]`` (s)."""
-    return Material.from_prony(E0=E0, moduli=np.full(terms, E0 * (ratio - 1) / terms),
-                               times=np.geomspace(tmin, tmax, terms))
+    return Material.from_prony(
+        E0=E0, moduli=np.full(terms, E0 * (ratio - 1) / terms), times=np.geomspace(tmin, tmax, terms)
+    )
 
 
 def _isolated(method, key="cells"):
     def adapter(material, V, load, cfg, vtk):
         return bem_isolated_cylinder(material, radius=R, load=load, speed=V, cells=cfg[key], method=method)
+
     return adapter
 
 
@@ -47,12 +50,16 @@ def _periodic(material, V, load, cfg, vtk):
 
 def _fem(material, V, load, cfg, vtk):
     fem = cfg["fem"]
-    return fem_cylinder(material, radius=R, load=load, speed=V, resolution=fem["resolution"], vtk=vtk,
-                        **fem.get("options", {}))
+    return fem_cylinder(
+        material, radius=R, load=load, speed=V, resolution=fem["resolution"], vtk=vtk, **fem.get("options", {})
+    )
 
 
-UNDER_TEST = {"bem-periodic": _periodic, "bem-isolated-uniform": _isolated("uniform"),
-              "bem-isolated-adaptive": _isolated("adaptive")}
+UNDER_TEST = {
+    "bem-periodic": _periodic,
+    "bem-isolated-uniform": _isolated("uniform"),
+    "bem-isolated-adaptive": _isolated("adaptive"),
+}
 REFERENCE = {"bem-reference": _isolated("uniform", "ref_cells")}
 
 
@@ -66,14 +73,32 @@ def compare(out, tol, why, name, b, ref, label, solver=None):
     pb, pr = metrics.bin_average(b["x"], b["pressure"], edges), metrics.bin_average(ref["x"], ref["pressure"], edges)
     mid = 0.5 * (edges[1:] + edges[:-1])
     out.check("binned_pressure_rel_l2", pair, label, metrics.rel_l2(mid, pb, pr), tol["l2"], why["l2"])
-    out.check("friction_rel_diff", pair, label, metrics.rel_diff(b["friction"], ref["friction"]), tol["friction"],
-              why["friction"])
+    out.check(
+        "friction_rel_diff",
+        pair,
+        label,
+        metrics.rel_diff(b["friction"], ref["friction"]),
+        tol["friction"],
+        why["friction"],
+    )
     for side in ("leading", "trailing"):
-        out.check(f"{side}_edge_diff_elements", pair, label, abs(b[f"{side}_edge"] - ref[f"{side}_edge"]) / width,
-                  tol["edge"], why["edge"])
+        out.check(
+            f"{side}_edge_diff_elements",
+            pair,
+            label,
+            abs(b[f"{side}_edge"] - ref[f"{side}_edge"]) / width,
+            tol["edge"],
+            why["edge"],
+        )
     judged = tol["peak_speeds"] is None or label.split("=")[-1] in {f"{v:g}" for v in tol["peak_speeds"]}
-    out.check("peak_pressure_rel_diff", pair, label, metrics.rel_diff(b["peak_pressure"], ref["peak_pressure"]),
-              tol["peak"] if judged else None, why["peak"] if judged else why["peak_unjudged"])
+    out.check(
+        "peak_pressure_rel_diff",
+        pair,
+        label,
+        metrics.rel_diff(b["peak_pressure"], ref["peak_pressure"]),
+        tol["peak"] if judged else None,
+        why["peak"] if judged else why["peak_unjudged"],
+    )
     return mid, pb, pr
 
 
@@ -81,10 +106,17 @@ def _peak_check(out, material, cfg, tamper):
     """The higher speed is the friction peak: the friction there exceeds that at 10^(+-1/4) of it."""
     V = cfg["speeds"][-1]
     ad = UNDER_TEST["bem-isolated-uniform"]
-    mu = [tamper.reference(("peak", f), ad, material, V * f, P, cfg, None)["friction"]
-          for f in (10**-0.25, 1.0, 10**0.25)]
-    out.check("peak_speed_friction_excess", "bem-reference", f"V={V:g}", max(mu[0], mu[2]) / mu[1] - 1, 0.0,
-              "the friction at the peak speed exceeds that at 10^(+-1/4) of it (a maximum): value < 0")
+    mu = [
+        tamper.reference(("peak", f), ad, material, V * f, P, cfg, None)["friction"] for f in (10**-0.25, 1.0, 10**0.25)
+    ]
+    out.check(
+        "peak_speed_friction_excess",
+        "bem-reference",
+        f"V={V:g}",
+        max(mu[0], mu[2]) / mu[1] - 1,
+        0.0,
+        "the friction at the peak speed exceeds that at 10^(+-1/4) of it (a maximum): value < 0",
+    )
     return mu
 
 
@@ -94,8 +126,21 @@ def run_rubber(*, quick, vtk_dir, root, tamper):
     speeds = cfg["speeds"]
     out = CaseOutput()
     runs = solve_all(UNDER_TEST, material, speeds, speeds, cfg, vtk_dir, root, out, tamper, label_name="V")
-    runs.update(solve_all(REFERENCE, material, speeds, speeds, cfg, None, root, out, tamper,
-                          references=tuple(REFERENCE), label_name="V"))
+    runs.update(
+        solve_all(
+            REFERENCE,
+            material,
+            speeds,
+            speeds,
+            cfg,
+            None,
+            root,
+            out,
+            tamper,
+            references=tuple(REFERENCE),
+            label_name="V",
+        )
+    )
     mu_peak = _peak_check(out, material, cfg, tamper)
     for k, V in enumerate(speeds):
         label = f"V={V:g}"
@@ -108,14 +153,28 @@ def run_rubber(*, quick, vtk_dir, root, tamper):
             if out.converged(name, label, b):
                 mid, pb, pr = compare(out, cfg["tol"]["bem"], cfg["why"]["bem"], name, b, ref, label)
                 curves[name], errors[name] = (b["x"], b["pressure"]), (mid, pb - pr)
-        out.profiles.append(Profile(f"{label} m/s (errors: bin averages)", curves, reference="bem-reference",
-                                    errors=errors))
+        out.profiles.append(
+            Profile(f"{label} m/s (errors: bin averages)", curves, reference="bem-reference", errors=errors)
+        )
     _run_fem(out, material, cfg, vtk_dir, root, tamper)
-    out.sweeps.append(Sweep("friction against speed", "V (m/s)", "friction coefficient", {
-        name: (np.array(speeds), np.array([r["friction"] for r in runs[name]])) for name in (*UNDER_TEST, *REFERENCE)}
-        | {"peak bracket": (speeds[-1] * np.array([10**-0.25, 1.0, 10**0.25]), np.array(mu_peak))}))
-    out.numbers["material"] = dict(E0=material.E0, E_inf=material.E_inf, moduli=material.moduli.tolist(),
-                                   relaxation_times=material.relaxation_times.tolist())
+    out.sweeps.append(
+        Sweep(
+            "friction against speed",
+            "V (m/s)",
+            "friction coefficient",
+            {
+                name: (np.array(speeds), np.array([r["friction"] for r in runs[name]]))
+                for name in (*UNDER_TEST, *REFERENCE)
+            }
+            | {"peak bracket": (speeds[-1] * np.array([10**-0.25, 1.0, 10**0.25]), np.array(mu_peak))},
+        )
+    )
+    out.numbers["material"] = dict(
+        E0=material.E0,
+        E_inf=material.E_inf,
+        moduli=material.moduli.tolist(),
+        relaxation_times=material.relaxation_times.tolist(),
+    )
     out.numbers["speeds"] = list(speeds)
     return out
 
@@ -132,10 +191,22 @@ def _run_fem(out, material, cfg, vtk_dir, root, tamper):
     if not speeds:
         out.notes.append(fem["note"])
         return
-    f_runs = solve_all({"fem": _fem}, m_fem, speeds, speeds, cfg, vtk_dir, root, out, tamper, references=("fem",),
-                       label_name="fem V")
-    r_runs = solve_all({"bem-reference": REFERENCE["bem-reference"]}, m_fem, speeds, speeds, cfg, None, root,
-                       out, tamper, references=("bem-reference",), label_name="fem V")
+    f_runs = solve_all(
+        {"fem": _fem}, m_fem, speeds, speeds, cfg, vtk_dir, root, out, tamper, references=("fem",), label_name="fem V"
+    )
+    r_runs = solve_all(
+        {"bem-reference": REFERENCE["bem-reference"]},
+        m_fem,
+        speeds,
+        speeds,
+        cfg,
+        None,
+        root,
+        out,
+        tamper,
+        references=("bem-reference",),
+        label_name="fem V",
+    )
     for k, V in enumerate(speeds):
         label = f"fem V={V:g}"
         f, ref = f_runs["fem"][k], r_runs["bem-reference"][k]
@@ -144,18 +215,28 @@ def _run_fem(out, material, cfg, vtk_dir, root, tamper):
         tol, why = at_speed(cfg["tol"]["fem"], V), at_speed(cfg["why"]["fem"], V)
         fem_self_checks(out, label, f, tol["balance"], why["balance"])
         mid, pf, pr = compare(out, tol, why, "fem", f, ref, label)
-        out.profiles.append(Profile(f"{label} m/s, FEM material E_inf/E0 = {m_fem.E_inf / m_fem.E0:.3g}, "
-                                    f"{m_fem.moduli.size} terms (bin averages)",
-                                    {"fem": (mid, pf), "bem-reference": (mid, pr)}, reference="bem-reference",
-                                    errors={"fem": (mid, pf - pr)}))
+        out.profiles.append(
+            Profile(
+                f"{label} m/s, FEM material E_inf/E0 = {m_fem.E_inf / m_fem.E0:.3g}, "
+                f"{m_fem.moduli.size} terms (bin averages)",
+                {"fem": (mid, pf), "bem-reference": (mid, pr)},
+                reference="bem-reference",
+                errors={"fem": (mid, pf - pr)},
+            )
+        )
 
 
 from .rubber_settings import FULL, QUICK  # noqa: E402  (the settings name this module's solvers)
 
 CASES = [
-    Case("rubber", "Rolling cylinder on a rubber (many Prony terms, large modulus ratio)",
-         "Rigid cylinder (R = 20 mm, 1500 N/m) on a Prony rubber with equal moduli (full: 8 terms, E_inf/E0 = 300, "
-         "times 1e-5..1e-1 s; quick: 4 terms, E_inf/E0 = 30), at the BEM's friction peak and a decade below: "
-         "every BEM solver against the isolated BEM on twice the cells, and the FEM against that reference.",
-         (*UNDER_TEST, *REFERENCE, "fem"), "bem-reference", run_rubber),
+    Case(
+        "rubber",
+        "Rolling cylinder on a rubber (many Prony terms, large modulus ratio)",
+        "Rigid cylinder (R = 20 mm, 1500 N/m) on a Prony rubber with equal moduli (full: 8 terms, E_inf/E0 = 300, "
+        "times 1e-5..1e-1 s; quick: 4 terms, E_inf/E0 = 30), at the BEM's friction peak and a decade below: "
+        "every BEM solver against the isolated BEM on twice the cells, and the FEM against that reference.",
+        (*UNDER_TEST, *REFERENCE, "fem"),
+        "bem-reference",
+        run_rubber,
+    )
 ]

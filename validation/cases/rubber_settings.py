@@ -14,12 +14,17 @@ _WHY_BEM_Q = dict(
     edge="sampled edges on nested grids: measured 0 or 0.5 cell; 0.75 cell",
     peak="at the friction peak: measured 1.8e-4 (isolated) to 3.4e-3 (periodic); margin 2x",
     peak_unjudged="not judged: a decade below the peak the solvers' peaks differ by 2.7-14 % (leading-edge layers "
-                  "V tau_k of 1e-7..1e-4 m, at or below the cell: a pointwise value at an unresolved jump)",
+    "V tau_k of 1e-7..1e-4 m, at or below the cell: a pointwise value at an unresolved jump)",
 )
-_FEM_NOTE_Q = ("the FEM's rubber comparison is in the full set: the 4-term, E_inf/E0 = 30 rubber needs 59k unknowns at "
-               "one element per a_inf (3 minutes on a loaded 2-core machine), more than the quick set's budget")
+_FEM_NOTE_Q = (
+    "the FEM's rubber comparison is in the full set: the 4-term, E_inf/E0 = 30 rubber needs 59k unknowns at "
+    "one element per a_inf (3 minutes on a loaded 2-core machine), more than the quick set's budget"
+)
 QUICK = dict(
-    material=dict(ratio=30, terms=4, tmin=1e-4), speeds=[1e-3, 1e-2], cells=10, ref_cells=20,
+    material=dict(ratio=30, terms=4, tmin=1e-4),
+    speeds=[1e-3, 1e-2],
+    cells=10,
+    ref_cells=20,
     fem=dict(material=None, speeds=[], resolution=1, options=dict(grading=2.0), note=_FEM_NOTE_Q),
     tol=dict(bem=dict(l2=0.02, friction=1.5e-3, edge=0.75, peak=7e-3, peak_speeds=[1e-2]), fem={}),
     why=dict(bem=_WHY_BEM_Q, fem={}),
@@ -33,8 +38,11 @@ _WHY_FEM_F = dict(
     edge={1e-3: "measured <= 0.36 element (res 1); margin 2.1x", 1e-2: "measured <= 0.063 element; margin 2.4x"},
     peak="measured 2.9 % (res 1, 1e-2 m/s); margin 2x",
     peak_unjudged="not judged: at 1e-3 m/s the leading-edge layers V tau_k are thinner than an element (measured 9.8 %)",
-    balance={1e-3: "field dissipation against mu P V: measured 2.4 % (res 1); margin 2x",
-             1e-2: "field dissipation against mu P V: measured 1.05 % (res 1); margin 1.9x"})
+    balance={
+        1e-3: "field dissipation against mu P V: measured 2.4 % (res 1); margin 2x",
+        1e-2: "field dissipation against mu P V: measured 1.05 % (res 1); margin 1.9x",
+    },
+)
 # BEM (8 terms, E_inf/E0 = 300; 20 cells per a_inf, reference 40), measured at 1.78e-4 / 1.78e-3 m/s: binned L2
 # 1.55 % / 1.80 % (isolated), 2.4 % (periodic, 1.78e-3), friction <= 1.5e-4 (isolated), 8.3e-4 (periodic), edges
 # 0 or 0.5 cell, peak 8.8e-5 (isolated) / 9.4e-4 (periodic) at the friction peak, 8.3 % a decade below.
@@ -44,15 +52,31 @@ _WHY_BEM_F = dict(
     edge="sampled edges on nested grids: measured 0 or 0.5 cell; 0.75 cell",
     peak="at the friction peak: measured 8.8e-5 (isolated), 9.4e-4 (periodic); margin 2.1x",
     peak_unjudged="not judged: a decade below the peak the peaks differ by 8.3 % (leading-edge layers V tau_k of "
-                  "2e-9..2e-5 m, at or below the cell of 1.5e-5 m)")
+    "2e-9..2e-5 m, at or below the cell of 1.5e-5 m)",
+)
 FULL = dict(
-    material=dict(ratio=300, terms=8, tmin=1e-5), speeds=[1.78e-4, 1.78e-3], cells=20, ref_cells=40,
-    fem=dict(material=dict(ratio=30, terms=4, tmin=1e-4), speeds=[1e-3, 1e-2], resolution=1,
-             options=dict(grading=2.0),
-             note="the FEM runs on the quick rubber (4 terms, E_inf/E0 = 30, 59k unknowns at one element per a_inf): "
-                  "with this FEM the 8-term, E_inf/E0 = 300 rubber exceeds the validation budget in memory and time"),
-    tol=dict(bem=dict(l2=0.035, friction=2e-3, edge=0.75, peak=2e-3, peak_speeds=[1.78e-3]),
-             fem=dict(l2={1e-3: 0.03, 1e-2: 0.1}, friction={1e-3: 0.012, 1e-2: 6e-3}, edge={1e-3: 0.75, 1e-2: 0.15},
-                      peak=0.06, peak_speeds=[1e-2], balance={1e-3: 0.05, 1e-2: 0.02})),
+    material=dict(ratio=300, terms=8, tmin=1e-5),
+    speeds=[1.78e-4, 1.78e-3],
+    cells=20,
+    ref_cells=40,
+    fem=dict(
+        material=dict(ratio=30, terms=4, tmin=1e-4),
+        speeds=[1e-3, 1e-2],
+        resolution=1,
+        options=dict(grading=2.0),
+        note="the FEM runs on the quick rubber (4 terms, E_inf/E0 = 30, 59k unknowns at one element per a_inf): "
+        "with this FEM the 8-term, E_inf/E0 = 300 rubber exceeds the validation budget in memory and time",
+    ),
+    tol=dict(
+        bem=dict(l2=0.035, friction=2e-3, edge=0.75, peak=2e-3, peak_speeds=[1.78e-3]),
+        fem=dict(
+            l2={1e-3: 0.03, 1e-2: 0.1},
+            friction={1e-3: 0.012, 1e-2: 6e-3},
+            edge={1e-3: 0.75, 1e-2: 0.15},
+            peak=0.06,
+            peak_speeds=[1e-2],
+            balance={1e-3: 0.05, 1e-2: 0.02},
+        ),
+    ),
     why=dict(bem=_WHY_BEM_F, fem=_WHY_FEM_F),
 )

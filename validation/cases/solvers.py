@@ -5,9 +5,10 @@ indenter's axis), ``pressure`` (Pa) there, ``spacing`` (m, the element or cell s
 edge errors), ``trailing_edge``/``leading_edge`` (m), ``friction``, ``peak_pressure``, and
 the native result under ``result``, and ``success``. A BEM solve that misses its tolerance
 comes back with ``success=False``, its ``residual`` and ``message`` and nothing else: the
-cases then report a failed convergence check instead of comparing an invalid answer. Conventions of SPEC §2.2: the indenter moves in ``+x``,
+cases then report a failed convergence check instead of comparing an invalid answer. Conventions of docs/theory.md §3: the indenter moves in ``+x``,
 the leading edge is at ``+x``, the indenter's axis at ``x = 0``.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -15,8 +16,15 @@ from scipy.fft import next_fast_len
 
 from validation.metrics import sampled_edges
 
-__all__ = ["hertz_line_half_width", "bem_periodic_cylinder", "fem_cylinder", "bem_periodic_sphere",
-           "cylinder_cell", "bem_isolated_cylinder", "bem_isolated_sphere"]
+__all__ = [
+    "hertz_line_half_width",
+    "bem_periodic_cylinder",
+    "fem_cylinder",
+    "bem_periodic_sphere",
+    "cylinder_cell",
+    "bem_isolated_cylinder",
+    "bem_isolated_sphere",
+]
 
 
 def hertz_line_half_width(E, nu, radius, load):
@@ -41,8 +49,14 @@ def cylinder_cell(material, radius, load, speed, cells):
 
 def _failed(res, detail):
     """Adapter output of a solve that did not reach its tolerance: no fields to compare."""
-    return dict(success=False, residual=float(res.residual), message=res.message, detail=detail,
-                friction=float("nan"), result=None)
+    return dict(
+        success=False,
+        residual=float(res.residual),
+        message=res.message,
+        detail=detail,
+        friction=float("nan"),
+        result=None,
+    )
 
 
 FLAT = 8.0  # the cylinder profile is flattened beyond FLAT relaxed half-widths from its axis
@@ -64,16 +78,28 @@ def bem_periodic_cylinder(material, *, radius, load, speed, cells):
     n, dx = cylinder_cell(material, radius, load, speed, cells)
     a0 = hertz_line_half_width(material.E0, material.nu, radius, load)
     x = (np.arange(n) - n // 2) * dx
-    surface = bem.surfaces.from_heights(np.maximum(-x**2, -(FLAT * a0) ** 2) / (2 * radius), n * dx)
+    surface = bem.surfaces.from_heights(np.maximum(-(x**2), -((FLAT * a0) ** 2)) / (2 * radius), n * dx)
     res = bem.solve(surface, material, speed=speed, load=load, rtol=RTOL, raise_on_failure=False)
     if not res.success:
         return _failed(res, f"n = {n}: {res.message}")
     if np.any(res.pressure[np.abs(x) >= FLAT * a0] > 0):
         raise RuntimeError("the cylinder touches the solid where its profile is flattened; raise FLAT")
     trail, lead = sampled_edges(x, res.pressure)
-    return dict(success=True, x=x, pressure=res.pressure, spacing=dx, trailing_edge=trail, leading_edge=lead,
-                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res, material=material,
-                surface=surface, origin=(float(x[0]), 0.0), detail=f"n = {n}, dx = {dx:.3e} m")
+    return dict(
+        success=True,
+        x=x,
+        pressure=res.pressure,
+        spacing=dx,
+        trailing_edge=trail,
+        leading_edge=lead,
+        friction=res.friction,
+        peak_pressure=float(res.pressure.max()),
+        result=res,
+        material=material,
+        surface=surface,
+        origin=(float(x[0]), 0.0),
+        detail=f"n = {n}, dx = {dx:.3e} m",
+    )
 
 
 def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None, **options):
@@ -88,19 +114,34 @@ def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None, **optio
     import fem_reference
     from fem_reference.fields import contact_residual
 
-    res = fem_reference.rolling_cylinder(material, radius=radius, load=load, speed=speed,
-                                         resolution=resolution, vtk=vtk, keep_fields=True, **options)
+    res = fem_reference.rolling_cylinder(
+        material, radius=radius, load=load, speed=speed, resolution=resolution, vtk=vtk, keep_fields=True, **options
+    )
     friction = res.friction_dissipation if speed > 0 else res.friction
     t = res.timings
-    detail = (f"{res.n_unknowns} unknowns, h = {res.element_size:.3e} m; "
-              + ", ".join(f"{k} {v:.2g} s" for k, v in t.items()))
-    out = dict(success=bool(res.success), residual=float(res.residual), message=res.message,
-               x=res.x, pressure=res.pressure, spacing=res.element_size,
-               trailing_edge=res.trailing_edge, leading_edge=res.leading_edge, friction=friction,
-               friction_moment=res.friction, peak_pressure=res.peak_pressure,
-               contact_residual=contact_residual(res), linear_residual=_linear_residual(res),
-               power_fields=res.friction_dissipation * load * speed, power_moment=res.friction * load * speed,
-               timings=dict(t), n_unknowns=int(res.n_unknowns), detail=detail)
+    detail = f"{res.n_unknowns} unknowns, h = {res.element_size:.3e} m; " + ", ".join(
+        f"{k} {v:.2g} s" for k, v in t.items()
+    )
+    out = dict(
+        success=bool(res.success),
+        residual=float(res.residual),
+        message=res.message,
+        x=res.x,
+        pressure=res.pressure,
+        spacing=res.element_size,
+        trailing_edge=res.trailing_edge,
+        leading_edge=res.leading_edge,
+        friction=friction,
+        friction_moment=res.friction,
+        peak_pressure=res.peak_pressure,
+        contact_residual=contact_residual(res),
+        linear_residual=_linear_residual(res),
+        power_fields=res.friction_dissipation * load * speed,
+        power_moment=res.friction * load * speed,
+        timings=dict(t),
+        n_unknowns=int(res.n_unknowns),
+        detail=detail,
+    )
     out["result"] = _without_fields(res)
     return out
 
@@ -140,27 +181,54 @@ def bem_periodic_sphere(material, *, radius, load, speed, cells, cell_radii=8.0)
         return _failed(res, f"{n}^2 cells: {res.message}")
     line = res.pressure[:, n // 2]
     trail, lead = sampled_edges(x, line)
-    return dict(success=True, x=x, pressure=line, spacing=dx, trailing_edge=trail, leading_edge=lead,
-                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res, material=material,
-                surface=surface, field=res.pressure, X=X, Y=Y, origin=(float(x[0]), float(x[0])),
-                detail=f"{n}^2 cells, dx = {dx:.3e} m")
+    return dict(
+        success=True,
+        x=x,
+        pressure=line,
+        spacing=dx,
+        trailing_edge=trail,
+        leading_edge=lead,
+        friction=res.friction,
+        peak_pressure=float(res.pressure.max()),
+        result=res,
+        material=material,
+        surface=surface,
+        field=res.pressure,
+        X=X,
+        Y=Y,
+        origin=(float(x[0]), float(x[0])),
+        detail=f"{n}^2 cells, dx = {dx:.3e} m",
+    )
 
 
 def _isolated(surface, material, load, speed, method, dx, line, origin):
     import bem
 
-    res = bem.solve(surface, material, speed=speed, load=load, periodic=False, method=method, rtol=RTOL,
-                    raise_on_failure=False)
+    res = bem.solve(
+        surface, material, speed=speed, load=load, periodic=False, method=method, rtol=RTOL, raise_on_failure=False
+    )
     n = surface.n
     if not res.success:
         return _failed(res, f"{method}, n = {n}: {res.message}")
     x = surface.x
     p = res.pressure if res.pressure.ndim == 1 else line(res.pressure)
     trail, lead = sampled_edges(x, p)
-    return dict(success=True, x=x, pressure=p, spacing=dx, trailing_edge=trail, leading_edge=lead,
-                friction=res.friction, peak_pressure=float(res.pressure.max()), result=res, material=material,
-                surface=surface,
-                field=res.pressure, origin=origin(x), detail=f"{method}, n = {n}, dx = {dx:.3e} m")
+    return dict(
+        success=True,
+        x=x,
+        pressure=p,
+        spacing=dx,
+        trailing_edge=trail,
+        leading_edge=lead,
+        friction=res.friction,
+        peak_pressure=float(res.pressure.max()),
+        result=res,
+        material=material,
+        surface=surface,
+        field=res.pressure,
+        origin=origin(x),
+        detail=f"{method}, n = {n}, dx = {dx:.3e} m",
+    )
 
 
 def bem_isolated_cylinder(material, *, radius, load, speed, cells, method):
@@ -187,8 +255,9 @@ def bem_isolated_sphere(material, *, radius, load, speed, cells, method):
     dx = (3 * load * radius * es / (4 * material.E_inf)) ** (1 / 3) / cells
     n = int(np.ceil(3 * a0 / dx / 8)) * 8
     surface = bem.surfaces.sphere(radius=radius, n=n, length=n * dx)
-    out = _isolated(surface, material, load, speed, method, dx, lambda f: f[:, n // 2],
-                    lambda x: (float(x[0]), float(x[0])))
+    out = _isolated(
+        surface, material, load, speed, method, dx, lambda f: f[:, n // 2], lambda x: (float(x[0]), float(x[0]))
+    )
     if out["success"]:
         X, Y = np.meshgrid(surface.x, surface.x, indexing="ij")
         out.update(X=X, Y=Y, line_y=float(surface.x[n // 2]))

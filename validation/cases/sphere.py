@@ -11,6 +11,7 @@ with one sphere cap per cell, :func:`solvers.bem_periodic_sphere`) at rest and a
 speed. The periodic cell cannot show the glassy limit: its ``q_x = 0`` modes are not excited
 by sliding and respond relaxed at any speed.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -31,18 +32,29 @@ HIGH_SPEED = 1e4  # s = V lambda / a0 standing for the glassy limit (creep terms
 def _isolated(method):
     def adapter(material, *, radius, load, speed, cells):
         return bem_isolated_sphere(material, radius=radius, load=load, speed=speed, cells=cells, method=method)
+
     return adapter
 
 
-SPHERE_BEM = {"bem-periodic": bem_periodic_sphere, "bem-isolated-uniform": _isolated("uniform"),
-              "bem-isolated-adaptive": _isolated("adaptive")}
+SPHERE_BEM = {
+    "bem-periodic": bem_periodic_sphere,
+    "bem-isolated-uniform": _isolated("uniform"),
+    "bem-isolated-adaptive": _isolated("adaptive"),
+}
 
 
 def _fem_indentation(material, times, resolution, steps_per_decade, load=P, vtk=None):
     import fem_reference
 
-    return fem_reference.indentation(material, radius=R, load=load, times=np.asarray(times, float),
-                                     resolution=resolution, steps_per_decade=steps_per_decade, vtk=vtk)
+    return fem_reference.indentation(
+        material,
+        radius=R,
+        load=load,
+        times=np.asarray(times, float),
+        resolution=resolution,
+        steps_per_decade=steps_per_decade,
+        vtk=vtk,
+    )
 
 
 def _a0(material):
@@ -62,24 +74,55 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
     t = cfg["tol"]["fem"]
     for i, (label, modulus) in enumerate((("glassy (t=0+)", material.E_inf), ("relaxed (t=1000 lambda)", material.E0))):
         hz = point_contact(modulus, material.nu, R, P)
-        out.check("contact_radius_error_elements", "fem", label,
-                  metrics.edge_error(fem.contact_radius[i], hz.a, fem.element_size), t["edge"], WHY_FEM["edge"])
-        out.check("approach_rel_error", "fem", label, metrics.rel_diff(fem.approach[i], hz.delta), t["approach"],
-                  WHY_FEM["approach"])
-        out.check("peak_pressure_rel_error", "fem", label, metrics.rel_diff(fem.peak_pressure[i], hz.p0), t["peak"],
-                  WHY_FEM["peak"])
+        out.check(
+            "contact_radius_error_elements",
+            "fem",
+            label,
+            metrics.edge_error(fem.contact_radius[i], hz.a, fem.element_size),
+            t["edge"],
+            WHY_FEM["edge"],
+        )
+        out.check(
+            "approach_rel_error",
+            "fem",
+            label,
+            metrics.rel_diff(fem.approach[i], hz.delta),
+            t["approach"],
+            WHY_FEM["approach"],
+        )
+        out.check(
+            "peak_pressure_rel_error",
+            "fem",
+            label,
+            metrics.rel_diff(fem.peak_pressure[i], hz.p0),
+            t["peak"],
+            WHY_FEM["peak"],
+        )
     hz0 = point_contact(material.E0, material.nu, R, P)
-    out.check("pressure_rel_l2", "fem", "relaxed (t=1000 lambda)",
-              metrics.rel_l2(fem.r, fem.pressure, hz0.pressure(fem.r), weight=fem.r), t["l2"], WHY_FEM["l2"])
+    out.check(
+        "pressure_rel_l2",
+        "fem",
+        "relaxed (t=1000 lambda)",
+        metrics.rel_l2(fem.r, fem.pressure, hz0.pressure(fem.r), weight=fem.r),
+        t["l2"],
+        WHY_FEM["l2"],
+    )
     # --- BEM: at rest (Hertz with E0), glassy limit (isolated only), low speeds (friction asymptote)
     a0 = _a0(material)
-    curves = {"asymptote (V/R) E0 C lambda": (np.array(cfg["s"]), np.array([
-        low_speed_friction(material, radius=R, speed=s * a0 / lam) for s in cfg["s"]]))}
+    curves = {
+        "asymptote (V/R) E0 C lambda": (
+            np.array(cfg["s"]),
+            np.array([low_speed_friction(material, radius=R, speed=s * a0 / lam) for s in cfg["s"]]),
+        )
+    }
     xf = np.linspace(-1.3 * hz0.a, 1.3 * hz0.a, 401)
     keep_f = fem.r <= 1.3 * hz0.a
-    rest = Profile("at rest / relaxed: Hertz with E0 (BEM: row next to y = 0; FEM: radius)",
-                   {"exact": (xf, hz0.pressure(xf)), "fem": (fem.r[keep_f], fem.pressure[keep_f])}, reference="exact",
-                   errors={"fem": (fem.r[keep_f], fem.pressure[keep_f] - hz0.pressure(fem.r[keep_f]))})
+    rest = Profile(
+        "at rest / relaxed: Hertz with E0 (BEM: row next to y = 0; FEM: radius)",
+        {"exact": (xf, hz0.pressure(xf)), "fem": (fem.r[keep_f], fem.pressure[keep_f])},
+        reference="exact",
+        errors={"fem": (fem.r[keep_f], fem.pressure[keep_f] - hz0.pressure(fem.r[keep_f]))},
+    )
     hzi = point_contact(material.E_inf, material.nu, R, P)
     for name, adapter in SPHERE_BEM.items():
         tb, why = cfg["tol"][name], WHY[name]
@@ -98,14 +141,30 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
             if s in (0.0, HIGH_SPEED):
                 hz = hz0 if s == 0 else hzi
                 y = b.get("line_y", 0.0)
-                out.check("pressure_rel_l2", name, label,
-                          metrics.rel_l2(None, b["field"].ravel(), hz.pressure(np.hypot(b["X"], b["Y"]).ravel())),
-                          tb["l2"], why["l2"])
-                out.check("peak_pressure_rel_error", name, label, metrics.rel_diff(b["peak_pressure"], hz.p0),
-                          tb["peak"], why["peak"])
-                out.check("contact_radius_error_elements", name, label,
-                          metrics.edge_error(b["leading_edge"], np.sqrt(hz.a**2 - y**2), b["spacing"]), tb["edge"],
-                          why["edge"])
+                out.check(
+                    "pressure_rel_l2",
+                    name,
+                    label,
+                    metrics.rel_l2(None, b["field"].ravel(), hz.pressure(np.hypot(b["X"], b["Y"]).ravel())),
+                    tb["l2"],
+                    why["l2"],
+                )
+                out.check(
+                    "peak_pressure_rel_error",
+                    name,
+                    label,
+                    metrics.rel_diff(b["peak_pressure"], hz.p0),
+                    tb["peak"],
+                    why["peak"],
+                )
+                out.check(
+                    "contact_radius_error_elements",
+                    name,
+                    label,
+                    metrics.edge_error(b["leading_edge"], np.sqrt(hz.a**2 - y**2), b["spacing"]),
+                    tb["edge"],
+                    why["edge"],
+                )
                 if s == 0:
                     keep = np.abs(b["x"]) <= 1.3 * hz0.a
                     p_ex = hz0.pressure(np.hypot(b["x"][keep], y))
@@ -113,11 +172,23 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
                     rest.errors[name] = (b["x"][keep], b["pressure"][keep] - p_ex)
             else:
                 mu0 = low_speed_friction(material, radius=R, speed=V)
-                out.check("low_speed_asymptote_rel_error", name, label, metrics.rel_diff(b["friction"], mu0),
-                          tb["asymptote"], why["asymptote"])
+                out.check(
+                    "low_speed_asymptote_rel_error",
+                    name,
+                    label,
+                    metrics.rel_diff(b["friction"], mu0),
+                    tb["asymptote"],
+                    why["asymptote"],
+                )
                 if "excess" in tb:
-                    out.check("low_speed_asymptote_excess", name, label, (b["friction"] - mu0) / mu0, tb["excess"],
-                              why["excess"])
+                    out.check(
+                        "low_speed_asymptote_excess",
+                        name,
+                        label,
+                        (b["friction"] - mu0) / mu0,
+                        tb["excess"],
+                        why["excess"],
+                    )
         low = [(s, b["friction"]) for s, b in zip(labels, sols) if s in cfg["s"]]
         if low:
             curves[name] = tuple(np.array(v) for v in zip(*low))
@@ -125,8 +196,11 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
             out.files += write_bem_sweep(vtk_dir / name, root, sols, labels)
     out.profiles.append(rest)
     out.sweeps.append(Sweep("low-speed friction", "s = V lambda / a0", "friction coefficient", curves, logy=True))
-    out.numbers["fem"] = dict(contact_radius=fem.contact_radius.tolist(), approach=fem.approach.tolist(),
-                              peak_pressure=fem.peak_pressure.tolist())
+    out.numbers["fem"] = dict(
+        contact_radius=fem.contact_radius.tolist(),
+        approach=fem.approach.tolist(),
+        peak_pressure=fem.peak_pressure.tolist(),
+    )
     out.numbers["hertz"] = dict(a0=hz0.a, p0=hz0.p0, delta0=hz0.delta)
     return out
 
@@ -141,8 +215,7 @@ def run_creep(*, quick, vtk_dir, root, tamper):
     out = CaseOutput()
     m_fem, _, p_fem = tamper.inputs("fem", material, 0.0, P)
     pvd = None if vtk_dir is None else vtk_dir / "fem" / "creep.pvd"
-    fem, cost = metrics.measure(_fem_indentation, m_fem, times, cfg["resolution"], cfg["steps_per_decade"], p_fem,
-                                pvd)
+    fem, cost = metrics.measure(_fem_indentation, m_fem, times, cfg["resolution"], cfg["steps_per_decade"], p_fem, pvd)
     if pvd is not None:
         out.files += [str(f.relative_to(root)) for f in sorted(pvd.parent.glob("creep_*.vtm"))]
         out.files.append(str(pvd.relative_to(root)))
@@ -150,36 +223,87 @@ def run_creep(*, quick, vtk_dir, root, tamper):
     a_ex = lee_radok.contact_radius(material, R, P, times)
     d_ex = lee_radok.approach(material, R, P, times)
     # the exact maximum over r: an off-axis ring once the contact has crept (r/a ~ 0.9 at higher ratios)
-    p_ex = np.array([lee_radok.pressure(material, R, P, tt, np.linspace(0.0, a, 801)).max()
-                     for tt, a in zip(times, a_ex)])
+    p_ex = np.array(
+        [lee_radok.pressure(material, R, P, tt, np.linspace(0.0, a, 801)).max() for tt, a in zip(times, a_ex)]
+    )
     t = cfg["tol"]
     for i, tt in enumerate(cfg["t"]):
         label = f"t={tt:g} lambda"
-        out.check("contact_radius_error_elements", "fem", label,
-                  metrics.edge_error(fem.contact_radius[i], a_ex[i], fem.element_size), t["edge"], WHY_FEM["edge"])
-        out.check("approach_rel_error", "fem", label, metrics.rel_diff(fem.approach[i], d_ex[i]), t["approach"],
-                  WHY_FEM["approach"])
-        out.check("peak_pressure_rel_error", "fem", label, metrics.rel_diff(fem.peak_pressure[i], p_ex[i]), t["peak"],
-                  WHY_FEM["peak_creep"])
+        out.check(
+            "contact_radius_error_elements",
+            "fem",
+            label,
+            metrics.edge_error(fem.contact_radius[i], a_ex[i], fem.element_size),
+            t["edge"],
+            WHY_FEM["edge"],
+        )
+        out.check(
+            "approach_rel_error",
+            "fem",
+            label,
+            metrics.rel_diff(fem.approach[i], d_ex[i]),
+            t["approach"],
+            WHY_FEM["approach"],
+        )
+        out.check(
+            "peak_pressure_rel_error",
+            "fem",
+            label,
+            metrics.rel_diff(fem.peak_pressure[i], p_ex[i]),
+            t["peak"],
+            WHY_FEM["peak_creep"],
+        )
     td = np.geomspace(1e-2, max(cfg["t"]) * 2, 60) * lam
     a_d = lee_radok.contact_radius(material, R, P, td)
     pos = times > 0
-    out.sweeps.append(Sweep("contact radius against time", "t (s)", "a (m)", {
-        "Lee-Radok": (td, a_d), "fem": (times[pos], fem.contact_radius[pos])}))
-    out.sweeps.append(Sweep("approach against time", "t (s)", "delta (m)", {
-        "Lee-Radok": (td, a_d**2 / R), "fem": (times[pos], fem.approach[pos])}))
+    out.sweeps.append(
+        Sweep(
+            "contact radius against time",
+            "t (s)",
+            "a (m)",
+            {"Lee-Radok": (td, a_d), "fem": (times[pos], fem.contact_radius[pos])},
+        )
+    )
+    out.sweeps.append(
+        Sweep(
+            "approach against time",
+            "t (s)",
+            "delta (m)",
+            {"Lee-Radok": (td, a_d**2 / R), "fem": (times[pos], fem.approach[pos])},
+        )
+    )
     a_end = float(a_ex[-1])
     xf = np.linspace(0, 1.3 * a_end, 300)
     keep = fem.r <= 1.3 * a_end
     p_end = lee_radok.pressure(material, R, P, times[-1], fem.r)
-    out.check("pressure_rel_l2", "fem", f"t={cfg['t'][-1]:g} lambda",
-              metrics.rel_l2(fem.r, fem.pressure, p_end, weight=fem.r), t["l2"], WHY_FEM["l2"])
-    out.check("axis_pressure_rel_error", "fem", f"t={cfg['t'][-1]:g} lambda",
-              metrics.rel_diff(fem.pressure[0], p_end[0]), t["axis"], WHY_FEM["axis"])
-    out.profiles.append(Profile(f"t = {cfg['t'][-1]:g} lambda",
-                                {"Lee-Radok": (xf, lee_radok.pressure(material, R, P, times[-1], xf)),
-                                 "fem": (fem.r[keep], fem.pressure[keep])}, reference="Lee-Radok",
-                                errors={"fem": (fem.r[keep], fem.pressure[keep] - p_end[keep])}, xlabel="r (m)"))
+    out.check(
+        "pressure_rel_l2",
+        "fem",
+        f"t={cfg['t'][-1]:g} lambda",
+        metrics.rel_l2(fem.r, fem.pressure, p_end, weight=fem.r),
+        t["l2"],
+        WHY_FEM["l2"],
+    )
+    out.check(
+        "axis_pressure_rel_error",
+        "fem",
+        f"t={cfg['t'][-1]:g} lambda",
+        metrics.rel_diff(fem.pressure[0], p_end[0]),
+        t["axis"],
+        WHY_FEM["axis"],
+    )
+    out.profiles.append(
+        Profile(
+            f"t = {cfg['t'][-1]:g} lambda",
+            {
+                "Lee-Radok": (xf, lee_radok.pressure(material, R, P, times[-1], xf)),
+                "fem": (fem.r[keep], fem.pressure[keep]),
+            },
+            reference="Lee-Radok",
+            errors={"fem": (fem.r[keep], fem.pressure[keep] - p_end[keep])},
+            xlabel="r (m)",
+        )
+    )
     out.numbers["times"] = times.tolist()
     out.numbers["fem"] = dict(contact_radius=fem.contact_radius.tolist(), approach=fem.approach.tolist())
     out.numbers["exact"] = dict(contact_radius=a_ex.tolist(), approach=d_ex.tolist())
@@ -196,11 +320,11 @@ WHY_FEM = {
     "approach": "domain truncation a/L ~ 1e-3 plus O(h^2); measured <= 0.27 % (res 4)",
     "peak": "axis pressure extrapolated in r^2 from two nodes; measured 0.9-1.1 % (res 4); margin 1.4x",
     "peak_creep": "largest nodal pressure against the exact maximum over r (on the axis for E_inf/E0 = 3; an "
-                  "off-axis ring at higher ratios); measured 0.5-0.9 % (res 4), 0.10-0.24 % (res 8)",
+    "off-axis ring at higher ratios); measured 0.5-0.9 % (res 4), 0.10-0.24 % (res 8)",
     "axis": "axis pressure (extrapolated in r^2) against the exact one on the axis at the last time; "
-            "measured 0.52 % (res 4), 0.13 % (res 8)",
+    "measured 0.52 % (res 4), 0.13 % (res 8)",
     "l2": "nodal pressures (force / int phi 2 pi r dr) next to the square-root edge: first order in h; "
-          "measured 5.8 % (res 4), 2.8 % (res 8), r-weighted",
+    "measured 5.8 % (res 4), 2.8 % (res 8), r-weighted",
 }
 # Periodic BEM (2-D, dx = a_inf / cells, side 8 a0): measured at rest 0.95 % / 0.81 % L2 and 0.24 % / 0.25 %
 # peak at 12 / 16 cells; low-speed friction 1.6-1.8 % / 0.9-1.2 % below the asymptote at s = 1e-3..1e-2
@@ -211,10 +335,10 @@ WHY_BEM = {
     "peak": "periodic images (a/L)^3 ~ 2e-3 plus O(dx^2); measured 0.25 %",
     "edge": "sampling error half a cell plus the solver's; one cell",
     "asymptote": "discretisation of the edge cells ~ dx^1.5 (measured 1.7 % at 12 cells, 1 % at 16) "
-                 "plus the next-order term ~ 0.67 s; margin 1.4x (12 cells)",
+    "plus the next-order term ~ 0.67 s; margin 1.4x (12 cells)",
     "excess": "signed (mu - mu0) / mu0: the periodic BEM's friction lies below the asymptote at every grid measured "
-              "(-1.6 to -1.8 % at 12 cells, -0.9 to -1.2 % at 16) and the next-order term (-0.67 s) is negative "
-              "too, so an excess above +0.5 % is no discretisation error",
+    "(-1.6 to -1.8 % at 12 cells, -0.9 to -1.2 % at 16) and the next-order term (-0.67 s) is negative "
+    "too, so an excess above +0.5 % is no discretisation error",
 }
 # Isolated BEM (2-D, DC-FFT; square of 3 a0, dx = a_inf / cells), uniform and adaptive give the same
 # pressures at rest: measured L2 0.82 % / 0.62 % (rest) and 1.56 % / 0.91 % (glassy: fewer cells per radius)
@@ -225,35 +349,68 @@ WHY_BEM = {
 # ~ V lambda ln(dx / V lambda) each, without bound as s -> 0.) s = 1e-3 is in the full set only.
 WHY_ISO = {
     "l2": "square-root edge on a square grid ~ dx/a; measured 0.82 % (rest) and 1.56 % (glassy) at 12 cells, "
-          "0.62 % / 0.91 % at 16",
+    "0.62 % / 0.91 % at 16",
     "peak": "O(dx^2); measured <= 1.5e-3 (12 cells, glassy); margin 2x at 12 cells",
     "edge": "sampling error half a cell plus the solver's; one cell",
     "asymptote": "collocation ~ dx/a: measured 0.6-1.7 % at s = 1e-3..1e-2 (12-16 cells; 1.2 % at the quick "
-                 "12 cells, s = 1e-2: margin 2.1x) plus the next-order term ~ 0.67 s",
+    "12 cells, s = 1e-2: margin 2.1x) plus the next-order term ~ 0.67 s",
 }
 WHY = {"bem-periodic": WHY_BEM, "bem-isolated-uniform": WHY_ISO, "bem-isolated-adaptive": WHY_ISO}
 _ISO_Q = dict(l2=0.025, peak=0.003, edge=1.0, asymptote=0.025)
 _ISO_F = dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.03)
-QUICK_SPHERE = dict(s=[1e-2], cells=12, resolution=4,
-                    tol={"fem": dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08),
-                         "bem-periodic": dict(l2=0.02, peak=0.005, edge=1.0, asymptote=0.025, excess=0.005),
-                         "bem-isolated-uniform": _ISO_Q, "bem-isolated-adaptive": _ISO_Q})
-FULL_SPHERE = dict(s=[1e-3, 3e-3, 1e-2], cells=16, resolution=8,
-                   tol={"fem": dict(edge=0.5, approach=0.004, peak=0.01, l2=0.04),
-                        "bem-periodic": dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.02, excess=0.005),
-                        "bem-isolated-uniform": _ISO_F, "bem-isolated-adaptive": _ISO_F})
-QUICK_CREEP = dict(t=[0.0, 0.3, 1.0, 3.0, 10.0], resolution=4, steps_per_decade=10,
-                   tol=dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08, axis=0.01))
-FULL_CREEP = dict(t=[0.0, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0], resolution=8, steps_per_decade=20,
-                  tol=dict(edge=0.5, approach=0.004, peak=0.015, l2=0.04, axis=0.004))
+QUICK_SPHERE = dict(
+    s=[1e-2],
+    cells=12,
+    resolution=4,
+    tol={
+        "fem": dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08),
+        "bem-periodic": dict(l2=0.02, peak=0.005, edge=1.0, asymptote=0.025, excess=0.005),
+        "bem-isolated-uniform": _ISO_Q,
+        "bem-isolated-adaptive": _ISO_Q,
+    },
+)
+FULL_SPHERE = dict(
+    s=[1e-3, 3e-3, 1e-2],
+    cells=16,
+    resolution=8,
+    tol={
+        "fem": dict(edge=0.5, approach=0.004, peak=0.01, l2=0.04),
+        "bem-periodic": dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.02, excess=0.005),
+        "bem-isolated-uniform": _ISO_F,
+        "bem-isolated-adaptive": _ISO_F,
+    },
+)
+QUICK_CREEP = dict(
+    t=[0.0, 0.3, 1.0, 3.0, 10.0],
+    resolution=4,
+    steps_per_decade=10,
+    tol=dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08, axis=0.01),
+)
+FULL_CREEP = dict(
+    t=[0.0, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0],
+    resolution=8,
+    steps_per_decade=20,
+    tol=dict(edge=0.5, approach=0.004, peak=0.015, l2=0.04, axis=0.004),
+)
 
 CASES = [
-    Case("sphere_hertz", "Sphere: Hertz limits and low-speed friction",
-         "Rigid sphere (R = 10 mm, 1 N) on the seed SLS: FEM indentation at t = 0+ (Hertz, E_inf) and "
-         "t = 1000 lambda (Hertz, E0); periodic 2-D BEM at rest (Hertz, E0) and at low speed against "
-         "mu ~ (V/R) E0 sum C_k lambda_k; isolated 2-D BEM (uniform, adaptive) also at the glassy limit.",
-         ("exact", *SPHERE_BEM, "fem"), "exact", run_sphere),
-    Case("creep_indentation", "Sphere: creep under a step load (Lee-Radok)",
-         "Step load 1 N on a rigid sphere (R = 10 mm), seed SLS: FEM contact radius, approach and peak "
-         "pressure against Lee & Radok over time.", ("exact", "fem"), "exact", run_creep),
+    Case(
+        "sphere_hertz",
+        "Sphere: Hertz limits and low-speed friction",
+        "Rigid sphere (R = 10 mm, 1 N) on the seed SLS: FEM indentation at t = 0+ (Hertz, E_inf) and "
+        "t = 1000 lambda (Hertz, E0); periodic 2-D BEM at rest (Hertz, E0) and at low speed against "
+        "mu ~ (V/R) E0 sum C_k lambda_k; isolated 2-D BEM (uniform, adaptive) also at the glassy limit.",
+        ("exact", *SPHERE_BEM, "fem"),
+        "exact",
+        run_sphere,
+    ),
+    Case(
+        "creep_indentation",
+        "Sphere: creep under a step load (Lee-Radok)",
+        "Step load 1 N on a rigid sphere (R = 10 mm), seed SLS: FEM contact radius, approach and peak "
+        "pressure against Lee & Radok over time.",
+        ("exact", "fem"),
+        "exact",
+        run_creep,
+    ),
 ]

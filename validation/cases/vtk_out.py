@@ -1,5 +1,6 @@
 """VTK files of the cases: BEM fields as structured grids (.vti), FEM fields as .vtu, one
 .pvd collection per speed sweep (the sweep parameter as ParaView's time value)."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -22,8 +23,9 @@ def write_bem_sweep(folder, root, solutions, values, name="sweep.pvd"):
     files, entries = [], []
     for k, (sol, value) in enumerate(zip(solutions, values)):
         fname = f"point_{k:03d}.vti"
-        surface_grid(sol["surface"], sol["result"], origin=sol.get("origin", (0.0, 0.0)),
-                     material=sol.get("material")).save(folder / fname)
+        surface_grid(
+            sol["surface"], sol["result"], origin=sol.get("origin", (0.0, 0.0)), material=sol.get("material")
+        ).save(folder / fname)
         files.append(_rel(folder / fname, root))
         entries.append((fname, value))
     write_pvd(folder / name, entries)
