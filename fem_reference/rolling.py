@@ -20,36 +20,19 @@ import numpy as np
 
 from bem.checks import check_int, check_positive
 from bem.errors import ConvergenceError, InputError
-from bem.material import Material
 
 from .contact import solve_load_control
 from .graded import fold_terms, graded_half_space, initial_edges
 from .kinematics import quadrature_operators
 from .linsolve import RESIDUAL_LIMIT
 from .mesh import half_space_mesh
+from .rolling_inputs import check_inputs, domain_size, hertz_half_width
 from .rolling_result import RollingResult
 from .steady import steady_operator, stress_and_dissipation
 from .surface import contact_edges, top_surface
 
 __all__ = ["RollingResult", "rolling_cylinder", "domain_size"]
 log = logging.getLogger(__name__)
-
-
-def _hertz_half_width(E, nu, radius, load):
-    return float(np.sqrt(4.0 * load * radius * (1.0 - nu**2) / (np.pi * E)))
-
-
-def domain_size(material, radius, load, speed, *, contact_factor=40.0, retardation_factor=30.0):
-    """Half-width ``L`` = depth ``H`` of the block (m) standing for the half-space.
-
-    ``L = max(contact_factor * a_0, retardation_factor * V * max(lambda_k))`` with ``a_0``
-    the relaxed Hertz half-width and ``lambda_k`` the creep (retardation) times: the
-    truncation error of the elastic problem scales as ``(a/H)^2`` and that of the
-    viscoelastic one with ``V lambda / L`` (the retardation length must fit inside).
-    """
-    a0 = _hertz_half_width(material.E0, material.nu, radius, load)
-    ell_r = speed * float(np.max(material.creep_times)) if material.creep_times.size else 0.0
-    return max(contact_factor * a0, retardation_factor * ell_r)
 
 
 def _peak_memory_mib():
@@ -113,28 +96,6 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
         diss=diss,
         timings=timings,
     )
-
-
-def _check_inputs(material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh):
-    if not isinstance(material, Material):
-        raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
-    R = check_positive("radius", radius)
-    P = check_positive("load", load)
-    V = check_positive("speed", speed, allow_zero=True)
-    n_res = check_int("resolution", resolution, 1, 200)
-    band = check_positive("contact_band", contact_band)
-    maxiter = check_int("maxiter", maxiter, 1)
-    ratio = check_positive("grading", grading)
-    if not 1.0 < ratio <= 2.0:
-        raise InputError(f"grading must be in (1, 2], got {grading!r}")
-    if band < 1.05:
-        raise InputError(f"contact_band must be >= 1.05 relaxed half-widths, got {contact_band!r}")
-    fold = check_positive("fold", fold, allow_zero=True)
-    if fold >= 1:
-        raise InputError(f"fold must be in [0, 1), got {fold!r}")
-    if mesh not in ("uniform", "graded"):
-        raise InputError(f"mesh must be 'uniform' or 'graded', got {mesh!r}")
-    return R, P, V, n_res, band, maxiter, ratio, fold
 
 
 def rolling_cylinder(
@@ -223,7 +184,7 @@ def rolling_cylinder(
     bem.errors.ConvergenceError
         The active set does not settle, or the contact reaches the edge of the band.
     """
-    R, P, V, n_res, band, maxiter, ratio, fold = _check_inputs(
+    R, P, V, n_res, band, maxiter, ratio, fold = check_inputs(
         material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh
     )
     if condense not in ("auto", True, False):
@@ -243,11 +204,11 @@ def rolling_cylinder(
 
 def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
     nu = material.nu
-    a_inf = _hertz_half_width(material.E_inf, nu, R, P)
+    a_inf = hertz_half_width(material.E_inf, nu, R, P)
     h = a_inf / n_res
     taus = material.relaxation_times
     if fold > 0 and not material.is_elastic:
-        a_relaxed = _hertz_half_width(material.E0, nu, R, P)
+        a_relaxed = hertz_half_width(material.E0, nu, R, P)
         material = material.folded(V / a_relaxed, V / h, tol=fold)
     dropped = [float(t) for t in taus if t not in material.relaxation_times]
     terms = {
@@ -255,7 +216,7 @@ def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
         "relaxed": [t for t in dropped if V * t < fold * h],
         "glassy": [t for t in dropped if not V * t < fold * h],
     }
-    a0 = _hertz_half_width(material.E0, nu, R, P)
+    a0 = hertz_half_width(material.E0, nu, R, P)
     L = domain_size(material, R, P, V) if domain is None else check_positive("domain", domain)
     xb = band * a0
     if L < 4 * xb:

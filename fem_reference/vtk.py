@@ -38,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from . import fields as derived
+from .rolling_inputs import hertz_half_width
 
 __all__ = ["write_fields", "write_indentation", "volume_grid", "interface_points", "metadata", "UNITS", "COMPONENTS"]
 
@@ -124,14 +125,10 @@ def interface_points(result):
     return poly
 
 
-def _hertz_half_width(E, nu, radius, load):
-    return float(np.sqrt(4.0 * load * radius * (1.0 - nu**2) / (np.pi * E)))
-
-
 def metadata(result):
     """Field data of a :class:`~fem_reference.RollingResult` (see module docstring)."""
     m = result.material
-    a0 = _hertz_half_width(m.E0, m.nu, result.radius, result.load)
+    a0 = hertz_half_width(m.E0, m.nu, result.radius, result.load)
     lam = float(np.max(m.creep_times)) if m.creep_times.size else 0.0
     return dict(
         speed=[result.speed],

@@ -1,4 +1,4 @@
-"""Benchmark of the periodic FFT BEM solver (issue 2): time, iterations, memory and accuracy.
+"""Benchmark of the periodic FFT BEM solver: time, iterations, memory and accuracy.
 
 Run it with ``python -m viscobem_bench.periodic [--quick] [--sizes 256 512 ...] --out DIR``
 (``viscobem bench periodic`` calls :func:`run`). It prints a table and writes
@@ -12,9 +12,7 @@ grid size sees the same surface. Materials (nu = 0.5):
 - ``elastic``: E = 1e7 Pa (the seed material's E_inf); solved at speed 0.
 - ``seed``: standard linear solid E_inf = 1e7 Pa, E_inf/E0 = 3, creep (retardation) time
   tau = 0.01 s, at xi = v tau / L = 1e-2, i.e. v = 0.01 m/s; its own load, found like the
-  elastic one, so that it too has about 10 % contact. (Until git 993a70b it took the
-  elastic case's load, 5.97 N, where its softer response gives 19 % contact: 1024², 168
-  products against 145 at its own load, 2.8 N, 8.9 % contact; elastic 83.)
+  elastic one, so that it too has about 10 % contact.
 - ``rubber20``: E0 = 1e6 Pa, E_inf = 1e9 Pa (E_inf/E0 = 1000), 20 Prony terms of equal
   modulus (E_inf - E0)/20 with relaxation times log-spaced over 12 decades, 1e-10 s to
   1e2 s; xi = v tau / L = 1e-2 with tau its longest creep (retardation) time, as for the
@@ -24,9 +22,8 @@ grid size sees the same surface. Materials (nu = 0.5):
 Loads are found once (secant steps in a fresh process, the elastic case and the seed at
 n = 256, the rubber at n = 128) so that each case has about 10 % contact;
 the contact fractions reached at every size are reported. The rubber's active-set iteration
-cap is 1000, not the elastic and seed cases' 100 (see ``MAXITER``): at 10 % contact it
-needed more than 100 before the line preconditioner (then 17-31, and 13-16 since its inner
-solves go to 1 %, git 743c656; counted over all levels of the nested iteration). ``conv`` in
+cap is 1000, not the elastic and seed cases' 100 (see ``MAXITER``),
+counted over all levels of the nested iteration. ``conv`` in
 the table is the convergence of the default/tight solve.
 The cases run on a snapshot of ``bem/`` copied when the run starts (its SHA-256 and git
 head are in the JSON), so edits to the working tree during a run do not mix versions. Each
@@ -49,7 +46,6 @@ import platform
 import sys
 import tempfile
 import time
-from multiprocessing import TimeoutError as ProcessTimeout
 from pathlib import Path
 
 import numpy as np
@@ -75,127 +71,13 @@ from viscobem_bench.periodic_problem import (
     TAMAAS_TOL,
     TARGET_CONTACT,
     XI,
-    MiB,
     calibrate_worker,
     materials,
     surface_heights,
 )
-from viscobem_bench.periodic_report import fmt, publish, report, targets
-from viscobem_bench.periodic_workers import case_worker, profile_worker, tamaas_worker
-
-
-def _extrapolate(history, n):
-    """Seconds a case would take at size ``n`` from its earlier ``[(n, seconds)]``, or None.
-
-    Power law through the last two sizes (exponent clamped to [2, 4.5]), else ``n**2.6``.
-    """
-    if not history:
-        return None
-    n1, t1 = history[-1]
-    k = 2.6
-    if len(history) >= 2:
-        n0, t0 = history[-2]
-        k = float(np.clip(np.log(t1 / t0) / np.log(n1 / n0), 2.0, 4.5))
-    return t1 * (n / n1) ** k
-
-
-class _Session:
-    """The state of one run: its temporary folder, loads, time spent per case, and notes."""
-
-    def __init__(self, tmp, env, echo):
-        self.tmp, self.env, self.echo = tmp, env, echo
-        self.notes, self.cases, self.tamaas_runs = [], [], []
-        self.spent = {case: [] for case in CASES + ("tamaas",)}  # [(n, seconds)] per case
-        self.best_threads = None
-        self.loads = None
-
-    def note(self, text):
-        self.notes.append(text)
-        self.echo("  " + text)
-
-    def heights_file(self, n):
-        path = self.tmp / f"heights_{n}.npy"
-        if not path.exists():
-            np.save(path, surface_heights(n))
-        return str(path)
-
-    def skip(self, case, n, limit):
-        estimate = _extrapolate(self.spent[case], n)
-        if estimate is not None and estimate > limit:
-            self.note(f"{case} skipped at n = {n}: extrapolated {estimate:.0f} s > {limit:.0f} s")
-            return True
-        return False
-
-    def run_case(self, case, n, max_case_seconds, probe_iterations):
-        """One of our cases at size ``n`` in a fresh process."""
-        spec = {
-            "heights": self.heights_file(n),
-            "case": case,
-            "load": self.loads[case],
-            "tight_budget": -1.0 if probe_iterations else max_case_seconds / 2,
-            "maxiter": probe_iterations,
-        }
-        if case == "elastic":
-            spec["save_reference"] = str(self.tmp / f"reference_{n}.npy")
-        try:
-            res = _measure.run_in_fresh_process(case_worker, spec, env=self.env, timeout=4 * max_case_seconds)
-        except ProcessTimeout:
-            self.note(f"{case} at n = {n} stopped after {4 * max_case_seconds:.0f} s")
-            self.spent[case].append((n, 4 * max_case_seconds))
-            return
-        except Exception as err:  # a crash in one case must not lose the others
-            self.note(f"{case} at n = {n} failed: {type(err).__name__}: {err}")
-            return
-        self.spent[case].append((n, res["wall_time"]))
-        self.cases.append(res)
-        if res["reference"] is None and not probe_iterations:
-            self.notes.append(
-                f"{case} at n = {n}: tight solve skipped (default solve "
-                f"{res['wall_time']:.0f} s > {max_case_seconds / 2:.0f} s)"
-            )
-        self.echo(
-            f"  n = {n:5d} {case:9s} wall {res['wall_time']:8.3f} s, {res['matvecs']:5d} matvecs, "
-            f"contact {res['contact_fraction']:.4f}, peak {res['peak_rss'] / MiB:.0f} MiB, "
-            f"p err {fmt(res['pressure_error_l2'], '.1e')}, converged {res['success']}"
-        )
-
-    def run_tamaas(self, n, tol, threads, max_seconds):
-        """tamaas at size ``n``: given ``threads``, or 1 and all cores while cheap (the faster kept)."""
-        spec = {
-            "heights": self.heights_file(n),
-            "load": self.loads["elastic"],
-            "tol": tol,
-            "reference": str(self.tmp / f"reference_{n}.npy"),
-        }
-        estimate = _extrapolate(self.spent["tamaas"], n) or 0.0
-        cheap = not (self.best_threads and estimate > max_seconds / 4)
-        trials = threads or (sorted({1, os.cpu_count() or 1}) if cheap else [self.best_threads])
-        runs, seconds = {}, []
-        for k in trials:
-            t0 = time.perf_counter()
-            try:
-                runs[k] = _measure.run_in_fresh_process(
-                    tamaas_worker, spec, timeout=2 * max_seconds, env=_measure.thread_environment(1, omp_threads=k)
-                )
-            except ProcessTimeout:
-                self.note(f"tamaas ({k} threads) at n = {n} stopped after {2 * max_seconds:.0f} s")
-            except Exception as err:
-                self.note(f"tamaas at n = {n} failed: {type(err).__name__}: {err}")
-            seconds.append(time.perf_counter() - t0)
-        self.spent["tamaas"].append((n, min(seconds)))
-        if not runs:
-            return
-        self.best_threads = min(runs, key=lambda k: runs[k]["wall_time"])
-        t = dict(
-            runs[self.best_threads],
-            omp_threads=self.best_threads,
-            wall_time_by_threads={str(k): v["wall_time"] for k, v in runs.items()},
-        )
-        self.tamaas_runs.append(t)  # its speed-up is set by _more_rounds, from our final time
-        self.echo(
-            f"  n = {n:5d} tamaas    wall {t['wall_time']:8.3f} s, {t['iterations']} iterations, "
-            f"p err {t['pressure_error_l2']:.1e}, threads {t['wall_time_by_threads']}"
-        )
+from viscobem_bench.periodic_report import publish, report, targets
+from viscobem_bench.periodic_session import Session
+from viscobem_bench.periodic_workers import case_worker, profile_worker
 
 
 def _tamaas_version(wanted, echo):
@@ -268,7 +150,7 @@ def run(
             f"measuring a snapshot of {code['source']} (sha256 {code['sha256'][:12]}, git {code['git_head']}"
             f"{' + uncommitted changes' if code['git_dirty'] else ''})"
         )
-        run = _Session(Path(tmp), ours_env, echo)
+        run = Session(Path(tmp), ours_env, echo)
         echo(f"calibrating loads for {TARGET_CONTACT:.0%} contact ...")
         calib = _measure.run_in_fresh_process(
             calibrate_worker, {k: run.heights_file(n) for k, n in CALIBRATION_N.items()}, env=ours_env

@@ -102,7 +102,7 @@ def gather(scene, records):
 
 def polar_plot(table, path):
     """Polar plot of mu(theta): one closed curve per speed (directions as given, sorted)."""
-    from .plots import _pyplot, _save
+    from .plot_style import _pyplot, _save
 
     plt = _pyplot()
     fig = plt.figure(figsize=(5.6, 5.2), constrained_layout=True)

@@ -91,7 +91,7 @@ def report(scene, record, out):
 
 def psd_plot(rec, path):
     """The measurement's PSD with the grid's wavevector range marked."""
-    from .plots import _pyplot, _save
+    from .plot_style import _pyplot, _save
 
     psd = rec["psd"]
     plt = _pyplot()

@@ -43,7 +43,6 @@ from pathlib import Path
 import numpy as np
 
 from bem import Material, surfaces
-from bem.checks import check_positive
 from bem.errors import InputError
 
 from . import guidance, scene_values, temperatures
@@ -265,49 +264,6 @@ def _surface(t, base):
     return (surfaces.load(base / t["path"], t["length"], unit=t.get("unit", "m")),)
 
 
-def _xi_time(t, material):
-    """tau of xi = v tau / l (s) and where it comes from."""
-    if "xi_time" in t:
-        source = "[loading] xi_time"
-        tau = t["xi_time"]
-    elif material.is_elastic:
-        source, tau = "elastic material: 1 s; set [loading] xi_time to change it", 1.0
-    else:
-        tau = material.creep_times.max()
-        source = "the material's longest creep time; set [loading] xi_time to change it"
-    return check_positive("[loading] xi_time (s)", scene_values.number("loading", "xi_time", tau)), source
-
-
-def _speeds(t, tau, length):
-    """Speeds (m/s) and xi of the [loading] table; ``xi = v tau / length``."""
-    if ("speeds" in t) == ("xi" in t):
-        raise InputError("[loading] give exactly one of speeds = [...] (m/s) or xi = {start, stop, num}")
-    if "speeds" in t:
-        values = t["speeds"] if isinstance(t["speeds"], list) else [t["speeds"]]
-        speeds = np.array([scene_values.number("loading", "speeds", v) for v in values], dtype=float)
-        if speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
-            raise InputError(
-                f"[loading] speeds must be a non-empty list of finite speeds >= 0 m/s, got {t['speeds']!r}"
-            )
-        return speeds, speeds * tau / length
-    xi = t["xi"]
-    if isinstance(xi, list):
-        values = np.asarray(xi, dtype=float) if all(isinstance(x, (int, float)) for x in xi) else None
-        if values is None or values.size == 0 or not np.all(values > 0):
-            raise InputError(f"[loading] xi as a list must hold numbers > 0, got {xi!r}")
-        return values * length / tau, values
-    if not isinstance(xi, dict) or set(xi) != {"start", "stop", "num"}:
-        raise InputError("[loading] xi must be a table {start, stop, num} (log-spaced) or a list of values")
-    start, stop = (scene_values.number("loading", f"xi.{k}", xi[k]) for k in ("start", "stop"))
-    num = xi["num"]
-    if isinstance(num, bool) or not isinstance(num, int) or num < 1:
-        raise InputError(f"[loading] xi.num must be an integer >= 1, got {num!r}")
-    if not (0 < start <= stop < np.inf):
-        raise InputError(f"[loading] xi needs 0 < start <= stop (finite), got {xi}")
-    values = np.logspace(np.log10(start), np.log10(stop), num)
-    return values * length / tau, values
-
-
 def parse(text, *, base=Path("."), source="<string>", overrides=()):
     """Parse scene TOML ``text``; relative paths resolve against ``base``.
 
@@ -332,7 +288,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     if "load" not in raw["loading"]:
         raise InputError("[loading] load is required (N for 2-D surfaces, N/m for 1-D profiles)")
     loads = scene_values.loads(raw["loading"]["load"])
-    tau, tau_source = _xi_time(raw["loading"], material)
+    tau, tau_source = scene_values.xi_time(raw["loading"], material)
     kind = raw["surface"]["kind"]
     xi_length = (
         surface.length
@@ -341,7 +297,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
             kind, modulus=material.E0, nu=material.nu, radius=raw["surface"]["radius"], load=loads[0]
         )
     )
-    speeds, xi = _speeds(raw["loading"], tau, xi_length)
+    speeds, xi = scene_values.speeds(raw["loading"], tau, xi_length)
     warnings = guidance.resolution_warnings(raw["surface"], surface.n, MIN_POINTS_PER_WAVELENGTH)
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")

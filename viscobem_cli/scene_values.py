@@ -6,6 +6,7 @@ import sys
 
 import numpy as np
 
+from bem.checks import check_positive
 from bem.errors import InputError
 
 if sys.version_info >= (3, 11):
@@ -105,3 +106,46 @@ def override(raw, item):
         if not isinstance(table, dict):
             raise InputError(f"--set {item!r}: {key!r} is not a table")
     table[keys[-1]] = parsed
+
+
+def xi_time(t, material):
+    """tau of xi = v tau / l (s) and where it comes from."""
+    if "xi_time" in t:
+        source = "[loading] xi_time"
+        tau = t["xi_time"]
+    elif material.is_elastic:
+        source, tau = "elastic material: 1 s; set [loading] xi_time to change it", 1.0
+    else:
+        tau = material.creep_times.max()
+        source = "the material's longest creep time; set [loading] xi_time to change it"
+    return check_positive("[loading] xi_time (s)", number("loading", "xi_time", tau)), source
+
+
+def speeds(t, tau, length):
+    """Speeds (m/s) and xi of the [loading] table; ``xi = v tau / length``."""
+    if ("speeds" in t) == ("xi" in t):
+        raise InputError("[loading] give exactly one of speeds = [...] (m/s) or xi = {start, stop, num}")
+    if "speeds" in t:
+        values = t["speeds"] if isinstance(t["speeds"], list) else [t["speeds"]]
+        speeds = np.array([number("loading", "speeds", v) for v in values], dtype=float)
+        if speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
+            raise InputError(
+                f"[loading] speeds must be a non-empty list of finite speeds >= 0 m/s, got {t['speeds']!r}"
+            )
+        return speeds, speeds * tau / length
+    xi = t["xi"]
+    if isinstance(xi, list):
+        values = np.asarray(xi, dtype=float) if all(isinstance(x, (int, float)) for x in xi) else None
+        if values is None or values.size == 0 or not np.all(values > 0):
+            raise InputError(f"[loading] xi as a list must hold numbers > 0, got {xi!r}")
+        return values * length / tau, values
+    if not isinstance(xi, dict) or set(xi) != {"start", "stop", "num"}:
+        raise InputError("[loading] xi must be a table {start, stop, num} (log-spaced) or a list of values")
+    start, stop = (number("loading", f"xi.{k}", xi[k]) for k in ("start", "stop"))
+    num = xi["num"]
+    if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+        raise InputError(f"[loading] xi.num must be an integer >= 1, got {num!r}")
+    if not (0 < start <= stop < np.inf):
+        raise InputError(f"[loading] xi needs 0 < start <= stop (finite), got {xi}")
+    values = np.logspace(np.log10(start), np.log10(stop), num)
+    return values * length / tau, values
