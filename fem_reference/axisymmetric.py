@@ -67,7 +67,7 @@ class AxisymmetricStepper:
         A = sp.bmat([[mb.K[f][:, f], -mb.G[f]], [-mb.G[f].T, -mb.c * mb.M]], format="csc")
         self.matrix = A.tocsr()
         self.factor = factorize(A, solver)
-        self.residual = 0.0  # largest relative residual ||A x - b|| / ||b|| so far
+        self.residual = 0.0  # largest relative residual so far (linsolve.relative_residual)
         self._pending = None
 
     @property
@@ -88,7 +88,7 @@ class AxisymmetricStepper:
         rhs[f.size :] = rhs_p
         if not np.any(rhs):
             return np.zeros((self.ops.B.shape[1],) + rhs_u.shape[1:])
-        x, res = solve_refined(self.matrix, self.factor, rhs)
+        x, res = solve_refined(self.matrix, self.factor, rhs, n_equilibrium=self.free.size)
         self.residual = max(self.residual, res)
         u = np.zeros((self.ops.B.shape[1],) + rhs_u.shape[1:])
         u[f] = x[: f.size]

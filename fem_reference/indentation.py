@@ -59,7 +59,9 @@ class IndentationResult:
         True only if every linear solve has ``linear_residual <= 1e-8`` and every step's
         complementarity ``residual`` is below 1e-9.
     linear_residual : float
-        Largest ``||A x - b|| / ||b||`` of the linear solves (SuperLU or PARDISO).
+        Largest relative residual of the linear solves (SuperLU or PARDISO): the force balance
+        against the load, the constraint rows against their own terms
+        (:func:`~fem_reference.linsolve.relative_residual`).
     residual : float
         Largest complementarity residual of the steps' active-set solves.
     solver : str

@@ -60,7 +60,9 @@ class RollingResult:
         ``tau_k``, s), ``pressure`` (Pa), ``dissipation``, ``weights``, and ``u``,
         ``mesh``, ``basis``, ``ops`` (:class:`~fem_reference.kinematics.QuadratureOperators`).
     linear_residual : float
-        Largest ``||A x - b|| / ||b||`` of the linear solves (flexibility and fields).
+        Largest relative residual of the linear solves (flexibility and fields): ``||K u - f|| / ||f||``
+        on the force balance, the constraint rows against their own terms
+        (:func:`~fem_reference.linsolve.relative_residual`).
     solver : str
         Linear solver that ran (``splu`` or ``pardiso``).
     mesh : str

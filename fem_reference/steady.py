@@ -52,8 +52,8 @@ class SteadyOperator:
 
     Use :meth:`solve` with nodal forces (N/m) on the displacement DOFs; it returns the
     displacement (m), pressure (Pa) and viscous strains at the quadrature points.
-    ``residual`` is the largest relative residual ``||A x - b|| / ||b||`` of the solves
-    so far; ``condensed`` flags the terms whose viscous strains were eliminated.
+    ``residual`` is the largest relative residual of the solves so far (force balance
+    against the load, constraints against their own terms: :func:`~fem_reference.linsolve.relative_residual`); ``condensed`` flags the terms whose viscous strains were eliminated.
     """
 
     ops: object
@@ -85,7 +85,7 @@ class SteadyOperator:
         npr = self.sizes[1]
         rhs = np.zeros((self.n_unknowns,) + forces.shape[1:])
         rhs[: self.free.size] = forces[self.free] / E
-        x, res = solve_refined(self.matrix, self.factor, rhs)
+        x, res = solve_refined(self.matrix, self.factor, rhs, n_equilibrium=self.free.size)
         self.residual = max(self.residual, res)
         u = np.zeros(forces.shape)
         u[self.free] = x[: self.free.size]

@@ -14,7 +14,7 @@ from fem_reference import rolling_cylinder
 from fem_reference.condense import condensed_operator
 from fem_reference.graded import fold_terms, graded_half_space
 from fem_reference.grading import graded_coordinates
-from fem_reference.linsolve import factorize, relative_residual, solve_refined
+from fem_reference.linsolve import RESIDUAL_LIMIT, factorize, relative_residual, solve_refined
 from fem_reference.transport import streamline_operators
 
 R, P = 0.01, 100.0
@@ -86,6 +86,27 @@ def test_refined_solve_reports_residual_for_each_column():
     x, res = solve_refined(A, fac, b)
     assert res < 1e-13 and res == pytest.approx(relative_residual(A, x, b))
     assert relative_residual(A, np.zeros_like(b), b) == pytest.approx(1.0)
+
+
+def test_block_residual_measures_constraints_in_their_own_units():
+    # force rows (load of order 1) stacked on constraint rows of terms ~1e9 with zero right-hand
+    # side: one norm reports their round-off (eps |A| |x|) as an error of the solve, the block
+    # measure does not; a wrong constraint block must still fail it
+    rng = np.random.default_rng(5)
+    n, m = 200, 150
+    K = sp.random(n, n, density=0.03, random_state=6) + 4 * sp.identity(n)
+    C = sp.random(m, n, density=0.05, random_state=7) * 1e9
+    A = sp.bmat([[K, sp.random(n, m, density=0.03, random_state=8)], [C, 1e9 * sp.identity(m)]], format="csr")
+    b = np.concatenate([rng.normal(size=n), np.zeros(m)])
+    x, res = solve_refined(A, factorize(A, "splu"), b, n_equilibrium=n)
+    assert relative_residual(A, x, b) > RESIDUAL_LIMIT > 1e-12 > res  # measured 3e-7 and 2.7e-13
+    assert res == pytest.approx(relative_residual(A, x, b, n))
+    wrong = x.copy()
+    wrong[n:] *= 1 + 1e-6  # a relative error of 1e-6 in the constraint unknowns
+    assert relative_residual(A, wrong, b, n) > 1e-8
+    wrong = x.copy()
+    wrong[:n] *= 1 + 1e-6
+    assert relative_residual(A, wrong, b, n) > 1e-8
 
 
 def test_rolling_reports_linear_residual_and_success():
