@@ -68,7 +68,7 @@ class AxisymmetricStepper:
         self.matrix = A.tocsr()
         self.factor = factorize(A, solver)
         self.residual = 0.0  # largest relative residual so far (linsolve.relative_residual)
-        self._pending = None
+        self._pending, self._hist = None, None
 
     @property
     def n_unknowns(self):
@@ -81,18 +81,20 @@ class AxisymmetricStepper:
             hist += gk * (ak * alpha + wpk * self.eps)
         return hist
 
-    def _solve_scaled(self, rhs_u, rhs_p):
+    def _solve_scaled(self, rhs_u, rhs_p, pressure=False):
+        """``u~`` (and, with ``pressure``, the scaled pressure unknowns ``p~``) of the glassy system."""
         f = self.free
         rhs = np.zeros((self.n_unknowns,) + rhs_u.shape[1:])
         rhs[: f.size] = rhs_u[f]
         rhs[f.size :] = rhs_p
-        if not np.any(rhs):
-            return np.zeros((self.ops.B.shape[1],) + rhs_u.shape[1:])
-        x, res = solve_refined(self.matrix, self.factor, rhs, n_equilibrium=self.free.size)
-        self.residual = max(self.residual, res)
+        if np.any(rhs):
+            x, res = solve_refined(self.matrix, self.factor, rhs, n_equilibrium=f.size)
+            self.residual = max(self.residual, res)
+        else:
+            x = rhs
         u = np.zeros((self.ops.B.shape[1],) + rhs_u.shape[1:])
         u[f] = x[: f.size]
-        return u
+        return (u, x[f.size :]) if pressure else u
 
     def unit_response(self, forces):
         """Glassy response ``u~`` (m) to nodal ``forces`` (N), shape ``(N_u[, m])``; the
@@ -113,8 +115,18 @@ class AxisymmetricStepper:
         hist = self._history(dt)
         mb = self.blocks
         u_hist = self._solve_scaled(mb.BtWd @ hist, -(mb.T @ hist)) / e
-        self._pending = dt
+        self._pending, self._hist = dt, hist
         return e, u_hist
+
+    def pressure(self, forces):
+        """Pressure ``-tr(sigma)/3`` (Pa) at the quadrature points at the end of the prepared step
+        under the nodal ``forces`` (N): the mixed solve's own pressure unknown, which does not scale
+        with ``e`` (equilibrium fixes it), from one more solve with the step's history strain. Call
+        it before :meth:`commit`."""
+        mb, E = self.blocks, self.material.E_inf
+        rhs_u = np.asarray(forces, dtype=float) / E + mb.BtWd @ self._hist
+        _, p = self._solve_scaled(rhs_u, -(mb.T @ self._hist), pressure=True)
+        return self.ops.N_p @ p * E
 
     def commit(self, u):
         """Accept the displacement ``u`` (m) at the end of the prepared step."""

@@ -27,6 +27,7 @@ from .contact import solve_load_control
 from .kinematics import quadrature_operators
 from .linsolve import RESIDUAL_LIMIT
 from .mesh import half_space_mesh
+from .steady import stress_and_dissipation
 from .surface import contact_edges, top_surface
 
 __all__ = ["IndentationResult", "indentation", "time_grid"]
@@ -218,11 +219,13 @@ def indentation(
         if sol.active[-1]:
             raise ConvergenceError("the contact reached the edge of the candidate band; increase contact_band")
         u_now = U @ sol.lam / e + u_hist
+        out_now = np.any(np.isclose(t, t_out, rtol=1e-12, atol=0))
+        p_now = stepper.pressure(F @ sol.lam) if vtk is not None and out_now else None
         stepper.commit(u_now)
         worst = max(worst, sol.residual)
         active, t_prev = sol.active, t
         pres = _nodal_pressure(rc, sol.lam, top.weights[cand])
-        if np.any(np.isclose(t, t_out, rtol=1e-12, atol=0)):
+        if out_now:
             lead, _ = contact_edges(
                 np.concatenate([-rc[:0:-1], rc]),
                 np.concatenate([pres[:0:-1], pres]),
@@ -240,6 +243,7 @@ def indentation(
                             u=u_now,
                             eps=stepper.eps,
                             alpha=list(stepper.alpha),
+                            stress=stress_and_dissipation(ops, material, u_now, p_now, stepper.alpha)[1],
                             pressure=pres,
                             approach=sol.d,
                         )

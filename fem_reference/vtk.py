@@ -25,10 +25,11 @@ retardation length over the relaxed Hertz half-width), ``friction``, ``approach`
 
 ``write_indentation(path, ...)`` writes the creep indentation as a ``.pvd`` time series (time in s) of
 ``.vtm`` files with the same names, in the ``(r, z)`` plane (x = r, y = z; the tensors' ``ZZ`` is the
-hoop component ``theta theta``): ``displacement``, ``strain``, ``viscous_strain_tau=<tau>s`` in the
-block; ``pressure``, ``gap``, ``contact``, ``depression`` on the interface; field data ``time``,
-``load`` (N), ``radius``, the material and ``units``. (The pressure unknown of the mixed solve is
-not kept by the time stepper, so the block carries no stress.)
+hoop component ``theta theta``): ``displacement``, ``stress``, ``strain``, ``von_mises``,
+``hydrostatic_pressure``, ``viscous_strain_tau=<tau>s`` in the block (the stress with the mixed
+solve's own pressure, :meth:`~fem_reference.axisymmetric.AxisymmetricStepper.pressure`);
+``pressure``, ``gap``, ``contact``, ``depression`` on the interface; field data ``time``, ``load``
+(N), ``radius``, the material and ``units``.
 """
 
 from __future__ import annotations
@@ -174,6 +175,12 @@ def _axisymmetric_strain(v):
     return derived._tensor(v[:, 0], v[:, 1], v[:, 2], 0.5 * v[:, 3])
 
 
+def _axisymmetric_stress(v):
+    """Full tensors (Pa) from axisymmetric Voigt stresses ``(rr, zz, tt, rz)`` (x = r, y = z, z = theta)."""
+    v = np.asarray(v, float).reshape(-1, 4)
+    return derived._tensor(v[:, 0], v[:, 1], v[:, 2], v[:, 3])
+
+
 def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
     import pyvista as pv
 
@@ -188,6 +195,10 @@ def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
     disp[:, :2] = u[basis.nodal_dofs].T
     vol.point_data["displacement"] = disp
     vol.cell_data["strain"] = _cell_average(_axisymmetric_strain(snap["eps"]), weights, nel)
+    stress = _axisymmetric_stress(snap["stress"])
+    vol.cell_data["stress"] = _cell_average(stress, weights, nel)
+    vol.cell_data["von_mises"] = _cell_average(derived.von_mises(stress), weights, nel)[:, 0]
+    vol.cell_data["hydrostatic_pressure"] = _cell_average(derived.hydrostatic_pressure(stress), weights, nel)[:, 0]
     for tau, a in zip(material.relaxation_times, snap["alpha"], strict=True):
         vol.cell_data[tau_name(tau)] = _cell_average(_axisymmetric_strain(a), weights, nel)
     _name_components(vol)
@@ -206,8 +217,8 @@ def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
 
 
 def write_indentation(path, snapshots, ops, material, radius, load, r):
-    """Write the indentation ``snapshots`` (dicts with ``t``, ``u``, ``eps``, ``alpha``,
-    ``pressure`` at the candidate radii ``r``, ``approach``) as ``point_XXX.vtm`` files beside the
+    """Write the indentation ``snapshots`` (dicts with ``t``, ``u``, ``eps``, ``alpha``, ``stress``
+    (axisymmetric Voigt, Pa), ``pressure`` at the candidate radii ``r``, ``approach``) as ``point_XXX.vtm`` files beside the
     ``.pvd`` ``path``; returns the path."""
     from xml.sax.saxutils import quoteattr
 
