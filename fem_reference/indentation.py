@@ -105,6 +105,9 @@ def time_grid(times, creep_times, steps_per_decade):
     extra = (
         np.geomspace(t0, t1, max(2, int(np.ceil(np.log10(t1 / t0) * steps_per_decade)) + 1)) if t1 > t0 else np.zeros(0)
     )
+    # a log-spaced point within round-off of a requested time would be a second step "at" that
+    # time (a step of ~1e-16 s) and a second output for it: the requested time is kept exactly
+    extra = extra[~np.any(np.isclose(extra[:, None], times[None, :], rtol=1e-9, atol=0), axis=1)]
     return np.unique(np.concatenate([[0.0], times, extra]))
 
 
@@ -219,7 +222,7 @@ def indentation(
         if sol.active[-1]:
             raise ConvergenceError("the contact reached the edge of the candidate band; increase contact_band")
         u_now = U @ sol.lam / e + u_hist
-        out_now = np.any(np.isclose(t, t_out, rtol=1e-12, atol=0))
+        out_now = np.count_nonzero(t_out == t)  # the grid holds the requested times exactly
         p_now = stepper.pressure(F @ sol.lam) if vtk is not None and out_now else None
         stepper.commit(u_now)
         worst = max(worst, sol.residual)
@@ -231,7 +234,7 @@ def indentation(
                 np.concatenate([pres[:0:-1], pres]),
                 np.concatenate([sol.active[:0:-1], sol.active]),
             )
-            for _ in range(int(np.sum(np.isclose(t, t_out, rtol=1e-12, atol=0)))):
+            for _ in range(out_now):
                 out["a"].append(lead)
                 out["d"].append(sol.d)
                 out["p"].append(float(pres.max()))

@@ -102,6 +102,20 @@ def test_lee_radok_creep():
     assert np.all(np.diff(r.contact_radius) >= -r.element_size / 8)  # creep: contact grows
 
 
+def test_requested_times_within_round_off_of_the_log_grid():
+    # requested times computed as multiples of the creep time land within an ulp of the log-spaced
+    # step times (0.1 * 0.01 != 1e-3): each must still be one step and one output, in order
+    m = Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=0.01, nu=0.5)
+    times = np.array([0.0, 0.1, 0.3, 1.0, 3.0, 10.0]) * float(np.max(m.creep_times))
+    g = time_grid(times, m.creep_times, 10)
+    assert np.all(np.isin(times, g)) and np.min(np.diff(g) / g[1:]) > 1e-6
+    r = indentation(m, radius=R, load=P, times=times, resolution=2, steps_per_decade=10)
+    a_lr = (0.75 * R * P * (1 - m.nu**2) * m.creep_compliance(times)) ** (1 / 3)
+    # measured within 0.9 % of Lee-Radok at resolution 2 (E_inf/E0 = 10); outputs shifted by one
+    # time are 20-50 % off
+    np.testing.assert_allclose(r.approach, a_lr**2 / R, rtol=0.02)
+
+
 @pytest.mark.parametrize(
     "kw, name",
     [
