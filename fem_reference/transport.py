@@ -18,7 +18,8 @@ Along a line, with ``z = dx / ell`` (or ``dt / tau``), ``a = exp(-z)`` and
 is the exact convolution for a strain that is piecewise linear between the points. It is
 exact in both limits (``z -> inf``: ``alpha = eps``, relaxed; ``z -> 0``: ``alpha`` frozen,
 glassy), unconditionally stable and second order in the point spacing (exponential time
-differencing; R.L. Taylor, K.S. Pister, G.L. Goudreau, IJNME 2 (1970) 45-59).
+differencing; R.L. Taylor, K.S. Pister, G.L. Goudreau, IJNME 2 (1970) 45-59); measured in the time
+step of creep indentation, docs/theory.md §9.
 """
 
 from __future__ import annotations

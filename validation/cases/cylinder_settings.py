@@ -2,8 +2,8 @@
 error it was measured at."""
 
 # --------------------------------------------------------------------------- settings and tolerances
-# FEM: 9-node elements, h = a_inf / resolution; second order in h (fem_reference docs). Measured against
-# Hunter (E_inf/E0 = 3): friction 2.8 % / 0.4 % (res 3 / 6) at s = 0.1, 0.4 % / 0.15 % at s = 1,
+# FEM: 9-node elements, h = a_inf / resolution; friction converges at order 1.8 in h (docs/theory.md §9).
+# Measured against Hunter (E_inf/E0 = 3): friction 2.8 % / 0.4 % (res 3 / 6) at s = 0.1, 0.4 % / 0.15 % at s = 1,
 # 0.03 % at s = 10; edges within 0.2 element; peak pressure 0.2-0.8 %.
 # BEM: collocation at cell centres, dx = a_inf / cells; measured (E_inf/E0 = 3) friction 5e-4 at 10-40
 # cells (floor: periodic images, (a/L)^2 = 6e-4), pressure L2 0.2-0.7 % at 20 cells, 0.1-0.5 % at 40.
@@ -23,7 +23,7 @@ _WHY_FEM = {
     "l2_layer": "leading-edge layer V tau narrower than 5 elements, smeared over an element: measured 8.5 % "
     "(E_inf/E0 = 10, res 2, s = 0.3), 6.8 % (res 4, s = 0.1)",
     "max": "nodal pressures next to the square-root edge ~ sqrt(h/a)",
-    "friction": "second order in h: measured 2.8 % (res 3) / 0.4 % (res 6) at s = 0.1 (E_inf/E0 = 3)",
+    "friction": "order 1.8 in h (docs/theory.md §9): measured 2.8 % (res 3) / 0.4 % (res 6) at s = 0.1 (E_inf/E0 = 3)",
     "peak": "measured 0.2-0.8 % at res 3-6 where the leading-edge layer is resolved",
     "edge": "edges extrapolated from p^2; measured <= 0.2 element; one element",
 }
