@@ -25,7 +25,6 @@ from bem.material import Material
 from .axisymmetric import AxisymmetricStepper, fixed_dofs_axisymmetric
 from .contact import solve_load_control
 from .kinematics import quadrature_operators
-from .linsolve import RESIDUAL_LIMIT
 from .mesh import half_space_mesh
 from .steady import stress_and_dissipation
 from .surface import contact_edges, top_surface
@@ -57,12 +56,16 @@ class IndentationResult:
     timings : dict
         Wall time (s) of the whole run under ``total``.
     success, message : bool, str
-        True only if every linear solve has ``linear_residual <= 1e-8`` and every step's
+        True only if every linear solve is within its limit (``linear_residual <=
+        linear_residual_limit``) and every step's
         complementarity ``residual`` is below 1e-9.
     linear_residual : float
-        Largest relative residual of the linear solves (SuperLU or PARDISO): the force balance
-        against the load, the constraint rows against their own terms
-        (:func:`~fem_reference.linsolve.relative_residual`).
+        Relative residual of the linear solve (SuperLU or PARDISO) closest to its limit: the
+        force balance against the load, ``||K u - f|| / ||f||``, the constraint rows against
+        their own terms (:func:`~fem_reference.linsolve.relative_residual`).
+    linear_residual_limit : float
+        Its limit: 1e-8, or ten times the round-off floor of the force balance where that is
+        higher (:func:`~fem_reference.linsolve.residual_limit`).
     residual : float
         Largest complementarity residual of the steps' active-set solves.
     solver : str
@@ -85,6 +88,7 @@ class IndentationResult:
     message: str = ""
     timings: dict = field(default_factory=dict)
     linear_residual: float = float("nan")
+    linear_residual_limit: float = float("nan")
     residual: float = float("nan")
     solver: str = ""
 
@@ -269,18 +273,19 @@ def indentation(
         n_steps=grid.size,
         iterations=np.array(out["it"]),
         timings={"total": time.perf_counter() - t_start},
-        success=stepper.residual <= RESIDUAL_LIMIT and worst <= 1e-9,
-        message=_message(stepper.residual, worst),
+        success=stepper.residual <= stepper.residual_limit and worst <= 1e-9,
+        message=_message(stepper.residual, stepper.residual_limit, worst),
         linear_residual=float(stepper.residual),
+        linear_residual_limit=float(stepper.residual_limit),
         residual=worst,
         solver=stepper.factor.name,
     )
 
 
-def _message(linear, complementarity):
+def _message(linear, limit, complementarity):
     problems = []
-    if not linear <= RESIDUAL_LIMIT:
-        problems.append(f"linear solve residual {linear:.2e} > {RESIDUAL_LIMIT:.0e}")
+    if not linear <= limit:
+        problems.append(f"linear solve residual {linear:.2e} > {limit:.1e}")
     if not complementarity <= 1e-9:
         problems.append(f"complementarity residual {complementarity:.2e} > 1e-9")
     return "; ".join(problems) if problems else "converged"

@@ -15,9 +15,10 @@ import scipy.sparse.linalg as spla
 
 from bem.errors import InputError
 
-__all__ = ["factorize", "SOLVERS", "relative_residual", "solve_refined", "RESIDUAL_LIMIT"]
+__all__ = ["factorize", "SOLVERS", "relative_residual", "residual_limit", "solve_refined", "RESIDUAL_LIMIT"]
 
-RESIDUAL_LIMIT = 1e-8  # largest accepted relative residual of a linear solve (see relative_residual)
+RESIDUAL_LIMIT = 1e-8  # largest accepted relative residual of a linear solve (see residual_limit)
+FLOOR_FACTOR = 10.0  # a solve may sit this far above the round-off floor of its force balance
 
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
@@ -115,6 +116,28 @@ def relative_residual(A, x, b, n_equilibrium=None):
     return worst
 
 
+def residual_limit(A, x, b, n_equilibrium):
+    """The largest acceptable :func:`relative_residual` of the solve ``x`` of ``A x = b``.
+
+    It is :data:`RESIDUAL_LIMIT`, unless the round-off floor of the force balance is higher: a
+    backward-stable solve leaves residuals of order ``eps (|A| |x|)_i`` in each row, so
+    ``||K u - f|| / ||f||`` cannot fall below ``eps || (|A| |x|)_eq || / ||f||``. For rubbers of a
+    large modulus ratio the balance's terms exceed the load by ~1e8 (near the contact the glassy
+    and the viscous stresses almost cancel), which puts the floor near 2e-8; there the limit is
+    ``FLOOR_FACTOR`` times the floor. A wrong solve still fails: its residual is set by its error,
+    not by round-off.
+    """
+    n = int(n_equilibrium)
+    b2 = b.reshape(b.shape[0], -1)[:n]
+    terms = abs(A[:n]) @ np.abs(x.reshape(x.shape[0], -1))
+    load = np.linalg.norm(b2, axis=0)
+    ok = load > 0
+    if not np.any(ok):
+        return RESIDUAL_LIMIT
+    floor = np.finfo(float).eps * np.max(np.linalg.norm(terms, axis=0)[ok] / load[ok])
+    return max(RESIDUAL_LIMIT, FLOOR_FACTOR * float(floor))
+
+
 def _worst_ratio(num, den):
     """``max_j num_j / den_j`` over the columns with ``den_j > 0`` (``max num`` when there are none)."""
     ok = den > 0
@@ -125,9 +148,10 @@ def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
     """``x`` with ``factor.solve`` plus up to ``steps`` of iterative refinement.
 
     Refinement stops once the relative residual (:func:`relative_residual`, with
-    ``n_equilibrium`` force-balance rows) is below
-    ``target``; near the floor set by the conditioning it fluctuates, so the best iterate
-    is kept. Returns ``(x, residual)``, the residual of the returned ``x``.
+    ``n_equilibrium`` force-balance rows) is below ``target``; near the floor set by the
+    conditioning it fluctuates, so the best iterate is kept. Returns ``(x, residual, limit)``:
+    the residual of the returned ``x`` and the largest acceptable one (:func:`residual_limit`;
+    :data:`RESIDUAL_LIMIT` without ``n_equilibrium``).
     """
     x = factor.solve(b)
     res = relative_residual(A, x, b, n_equilibrium)
@@ -139,4 +163,7 @@ def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
         res = relative_residual(A, x, b, n_equilibrium)
         if res < best_res:
             best, best_res = x, res
-    return best, best_res
+    limit = RESIDUAL_LIMIT
+    if n_equilibrium is not None and best_res > RESIDUAL_LIMIT:  # only then can the floor matter
+        limit = residual_limit(A, best, b, n_equilibrium)
+    return best, best_res, limit

@@ -24,7 +24,6 @@ from bem.errors import ConvergenceError, InputError
 from .contact import solve_load_control
 from .graded import fold_terms, graded_half_space, initial_edges
 from .kinematics import quadrature_operators
-from .linsolve import RESIDUAL_LIMIT
 from .mesh import half_space_mesh
 from .rolling_inputs import check_inputs, domain_size, hertz_half_width
 from .rolling_result import RollingResult
@@ -281,10 +280,10 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
     trail, lead = out["edges"]
     mu = float(sol.lam @ xc / (R * P))
     power_fields = float(ops.weights @ out["diss"])
-    lin = float(op.residual)
+    lin, lin_limit = float(op.residual), float(op.residual_limit)
     problems = []
-    if not lin <= RESIDUAL_LIMIT:
-        problems.append(f"linear solve residual {lin:.2e} > {RESIDUAL_LIMIT:.0e}")
+    if not lin <= lin_limit:
+        problems.append(f"linear solve residual {lin:.2e} > {lin_limit:.1e}")
     if not sol.residual <= 1e-9:
         problems.append(f"complementarity residual {sol.residual:.2e} > 1e-9")
     timings = dict(out["timings"], total=time.perf_counter() - t_start)
@@ -336,6 +335,7 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         timings=timings,
         fields=fields,
         linear_residual=lin,
+        linear_residual_limit=lin_limit,
         solver=op.factor.name,
         mesh=mesh,
         passes=npass,

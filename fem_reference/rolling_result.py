@@ -49,7 +49,8 @@ class RollingResult:
         The material actually used (after folding inactive Prony terms).
     success, message : bool, str
         ``success`` is True only if the active set settled with a complementarity residual
-        below 1e-9 and every linear solve has ``linear_residual <= 1e-8``.
+        below 1e-9 and every linear solve is within its limit (``linear_residual <=
+        linear_residual_limit``).
     timings : dict
         Wall times (s) of the last mesh: ``assemble``, ``factor`` (their sum
         ``assemble_factor``), ``flexibility``, ``contact``, ``fields``; ``total`` over all
@@ -60,9 +61,12 @@ class RollingResult:
         ``tau_k``, s), ``pressure`` (Pa), ``dissipation``, ``weights``, and ``u``,
         ``mesh``, ``basis``, ``ops`` (:class:`~fem_reference.kinematics.QuadratureOperators`).
     linear_residual : float
-        Largest relative residual of the linear solves (flexibility and fields): ``||K u - f|| / ||f||``
-        on the force balance, the constraint rows against their own terms
+        Relative residual of the linear solve (flexibility and fields) closest to its limit:
+        ``||K u - f|| / ||f||`` on the force balance, the constraint rows against their own terms
         (:func:`~fem_reference.linsolve.relative_residual`).
+    linear_residual_limit : float
+        Its limit: 1e-8, or ten times the round-off floor of the force balance where that is
+        higher (:func:`~fem_reference.linsolve.residual_limit`).
     solver : str
         Linear solver that ran (``splu`` or ``pardiso``).
     mesh : str
@@ -105,6 +109,7 @@ class RollingResult:
     timings: dict = field(default_factory=dict)
     fields: dict = field(default_factory=dict, repr=False)
     linear_residual: float = float("nan")
+    linear_residual_limit: float = float("nan")
     solver: str = ""
     mesh: str = "uniform"
     passes: int = 1

@@ -14,7 +14,7 @@ from fem_reference import rolling_cylinder
 from fem_reference.condense import condensed_operator
 from fem_reference.graded import fold_terms, graded_half_space
 from fem_reference.grading import graded_coordinates
-from fem_reference.linsolve import RESIDUAL_LIMIT, factorize, relative_residual, solve_refined
+from fem_reference.linsolve import RESIDUAL_LIMIT, factorize, relative_residual, residual_limit, solve_refined
 from fem_reference.transport import streamline_operators
 
 R, P = 0.01, 100.0
@@ -83,7 +83,8 @@ def test_refined_solve_reports_residual_for_each_column():
     A = sp.random(300, 300, density=0.02, random_state=3) + sp.identity(300) * 5
     b = rng.normal(size=(300, 4))
     fac = factorize(A, "splu")
-    x, res = solve_refined(A, fac, b)
+    x, res, limit = solve_refined(A, fac, b)
+    assert limit == RESIDUAL_LIMIT
     assert res < 1e-13 and res == pytest.approx(relative_residual(A, x, b))
     assert relative_residual(A, np.zeros_like(b), b) == pytest.approx(1.0)
 
@@ -98,7 +99,8 @@ def test_block_residual_measures_constraints_in_their_own_units():
     C = sp.random(m, n, density=0.05, random_state=7) * 1e9
     A = sp.bmat([[K, sp.random(n, m, density=0.03, random_state=8)], [C, 1e9 * sp.identity(m)]], format="csr")
     b = np.concatenate([rng.normal(size=n), np.zeros(m)])
-    x, res = solve_refined(A, factorize(A, "splu"), b, n_equilibrium=n)
+    x, res, limit = solve_refined(A, factorize(A, "splu"), b, n_equilibrium=n)
+    assert limit == RESIDUAL_LIMIT  # below the limit the round-off floor is not consulted
     assert relative_residual(A, x, b) > RESIDUAL_LIMIT > 1e-12 > res  # measured 3e-7 and 2.7e-13
     assert res == pytest.approx(relative_residual(A, x, b, n))
     wrong = x.copy()
@@ -109,11 +111,29 @@ def test_block_residual_measures_constraints_in_their_own_units():
     assert relative_residual(A, wrong, b, n) > 1e-8
 
 
+def test_residual_limit_follows_the_round_off_floor_of_cancelling_terms():
+    # pairs of force rows whose terms (~1e8) nearly cancel to a load of order 1, as the glassy and
+    # viscous stresses of a stiff rubber do: no double-precision x has ||A x - b|| / ||b|| below
+    # eps * || |A| |x| || / ||b|| (~3e-8 here), so the limit is ten times that floor; a wrong x fails it
+    rng = np.random.default_rng(9)
+    n = 400
+    pair = np.array([[1 + 1e8, -1e8], [-1e8, 1 + 1e8]])
+    A = sp.block_diag([pair] * (n // 2), format="csr") + 0.01 * sp.random(n, n, density=0.01, random_state=4)
+    x_true = np.repeat(1 + 0.1 * rng.normal(size=n // 2), 2)  # equal within a pair: the terms cancel
+    b = A @ x_true
+    x, res, limit = solve_refined(A, factorize(A, "splu"), b, n_equilibrium=n)
+    floor = np.finfo(float).eps * np.linalg.norm(abs(A) @ np.abs(x)) / np.linalg.norm(b)
+    assert floor > RESIDUAL_LIMIT and residual_limit(A, x, b, n) == pytest.approx(10 * floor)
+    assert res <= limit  # the floor is consulted only when the residual exceeds 1e-8
+    wrong = x * (1 + 1e-6 * rng.normal(size=n))
+    assert relative_residual(A, wrong, b, n) > residual_limit(A, wrong, b, n)
+
+
 def test_rolling_reports_linear_residual_and_success():
     m = rubber(3, 30, nu=0.5)
     r = rolling_cylinder(m, radius=R, load=P, speed=1e-3, mesh="graded", resolution=3, solver="splu")
     assert r.success and r.message == "converged"
-    assert 0 < r.linear_residual <= 1e-8 and r.solver == "splu"
+    assert 0 < r.linear_residual <= r.linear_residual_limit == 1e-8 and r.solver == "splu"
     assert r.condensed == (True,) * len(r.terms["kept"]) and r.passes >= 1
     for key in ("assemble", "factor", "flexibility", "contact", "fields", "total"):
         assert r.timings[key] >= 0

@@ -179,6 +179,7 @@ def _rubber_case(terms, ratio, speed, resolution):
         "flexibility_s": r.timings["flexibility"],
         "contact_s": r.timings["contact"],
         "linear_residual": r.linear_residual,
+        "linear_residual_limit": r.linear_residual_limit,
         "success": r.success,
         "wall_s": wall,
         "peak_rss_mb": _peak_rss_mb(),
@@ -208,6 +209,8 @@ def rubber_rows(quick=True, fresh=None):
         "flexibility_s",
         "wall_s",
         "linear_residual",
+        "linear_residual_limit",
+        "success",
         "peak_rss_mb",
     ]
     print("\nrubbers on the graded mesh vs the isolated BEM (SuperLU)")

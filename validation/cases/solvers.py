@@ -118,7 +118,7 @@ def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None, **optio
     (extrapolated) ones; ``spacing`` is the 9-node element size. ``success`` is the solver's
     own; ``contact_residual`` is recomputed from the displacement field
     (:func:`fem_reference.fields.contact_residual`), ``linear_residual`` is the solver's
-    ``||K u - f|| / ||f||`` when it reports one. ``options`` go to ``rolling_cylinder``."""
+    ``||K u - f|| / ||f||`` when it reports one, ``linear_residual_limit`` its limit. ``options`` go to ``rolling_cylinder``."""
     import fem_reference
     from fem_reference.fields import contact_residual
 
@@ -144,6 +144,7 @@ def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None, **optio
         peak_pressure=res.peak_pressure,
         contact_residual=contact_residual(res),
         linear_residual=_linear_residual(res),
+        linear_residual_limit=getattr(res, "linear_residual_limit", None),
         power_fields=res.friction_dissipation * load * speed,
         power_moment=res.friction * load * speed,
         timings=dict(t),
