@@ -172,3 +172,24 @@ def source_snapshot(package, directory):
     finally:
         with contextlib.suppress(ValueError):
             sys.path.remove(str(directory))
+
+
+def write_record(out_dir, name, result):
+    """Write ``result`` as indented JSON to ``out_dir/name`` (the folder is created); returns the path."""
+    import json
+
+    path = Path(out_dir) / name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(result, indent=2, default=float))
+    return path
+
+
+def bench_main(run, description, record, argv=None, quick_help="fewer, smaller cases"):
+    """Command line of a benchmark module: ``--quick`` and ``--out`` passed to ``run``."""
+    import argparse
+
+    p = argparse.ArgumentParser(description=description)
+    p.add_argument("--quick", action="store_true", help=quick_help)
+    p.add_argument("--out", default=".", help=f"output directory for {record}")
+    args = p.parse_args(argv)
+    run(quick=args.quick, out_dir=args.out)

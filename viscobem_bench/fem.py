@@ -24,14 +24,11 @@ Run: ``python -m viscobem_bench.fem --quick --out DIR`` (writes ``DIR/fem_benchm
 
 from __future__ import annotations
 
-import argparse
-import json
-import pathlib
 import time
 
 import numpy as np
 
-from viscobem_bench._measure import peak_rss, run_in_fresh_process, thread_environment
+from viscobem_bench._measure import bench_main, peak_rss, run_in_fresh_process, thread_environment, write_record
 
 
 def _peak_rss_mb():
@@ -286,18 +283,12 @@ def run(quick: bool = True, out_dir=".") -> dict:
     )
     rubber = rubber_rows(quick, fresh)
     result = {"quick": quick, "rolling": rolling, "solvers": srows, "indentation": ind, "rubber": rubber}
-    out = pathlib.Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "fem_benchmark.json").write_text(json.dumps(result, indent=2, default=float))
+    write_record(out_dir, "fem_benchmark.json", result)
     return result
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--quick", action="store_true", help="fewer, smaller cases")
-    p.add_argument("--out", default=".", help="output directory for fem_benchmark.json")
-    args = p.parse_args(argv)
-    run(quick=args.quick, out_dir=args.out)
+    bench_main(run, __doc__.splitlines()[0], "fem_benchmark.json", argv)
 
 
 if __name__ == "__main__":

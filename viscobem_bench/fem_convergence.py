@@ -23,14 +23,11 @@ Run: ``viscobem bench fem_convergence [--quick] --out DIR`` (writes
 
 from __future__ import annotations
 
-import argparse
-import json
-import pathlib
 import time
 
 import numpy as np
 
-from viscobem_bench._measure import run_in_fresh_process, thread_environment
+from viscobem_bench._measure import bench_main, run_in_fresh_process, thread_environment, write_record
 from viscobem_bench.fem import _rolling_case, _sls, _table
 
 __all__ = ["observed_orders", "run", "main"]
@@ -118,18 +115,12 @@ def run(quick: bool = True, out_dir=".") -> dict:
     print("\ntime step: creep indentation, approach at t = 0.3, 1, 3 lambda; against the finest run, order in 1/steps")
     print(_table(tstep, ["steps_per_decade", "steps", "self_error", "order", "lee_radok_error_max", "wall_s"]))
     result = {"quick": quick, "mesh": mesh, "domain": domain, "time_step": tstep}
-    out = pathlib.Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "fem_convergence.json").write_text(json.dumps(result, indent=2, default=float))
+    write_record(out_dir, "fem_convergence.json", result)
     return result
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--quick", action="store_true", help="coarse rows (a smoke test)")
-    p.add_argument("--out", default=".", help="output directory for fem_convergence.json")
-    args = p.parse_args(argv)
-    run(quick=args.quick, out_dir=args.out)
+    bench_main(run, __doc__.splitlines()[0], "fem_convergence.json", argv, quick_help="coarse rows (a smoke test)")
 
 
 if __name__ == "__main__":
