@@ -8,9 +8,10 @@ and a decade below it (the peak is checked to be a maximum of the friction over 
 
 There is no exact solution. The reference (``bem-reference``) is the isolated BEM on twice as
 many cells as the solvers under test (``bem-periodic``, ``bem-isolated-uniform``,
-``bem-isolated-adaptive``); ``fem`` (scikit-fem steady rolling) is compared with the BEM
-reference solved on the FEM's material, which is the case's rubber where the FEM can afford it
-and a smaller one otherwise (``FULL["fem"]["material"]``, said in the report's notes).
+``bem-isolated-adaptive``); ``fem`` (scikit-fem steady rolling, on the mesh graded toward the
+contact edges and the leading-edge layers) is compared with the BEM reference solved on the FEM's
+material: the case's rubber, or a smaller one where ``FULL["fem"]["material"]`` names it (said in
+the report's notes). The quick set leaves the FEM out (its budget).
 Pressures are compared as bin averages over the coarser spacing (:mod:`validation.metrics`).
 """
 
