@@ -11,7 +11,7 @@ many cells as the solvers under test (``bem-periodic``, ``bem-isolated-uniform``
 ``bem-isolated-adaptive``); ``fem`` (scikit-fem steady rolling, on the mesh graded toward the
 contact edges and the leading-edge layers) is compared with the BEM reference solved on the FEM's
 material: the case's rubber, or a smaller one where ``FULL["fem"]["material"]`` names it (said in
-the report's notes). The quick set leaves the FEM out (its budget).
+the report's notes). The quick set runs the FEM at one speed.
 Pressures are compared as bin averages over the coarser spacing (:mod:`validation.metrics`).
 """
 
