@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .surface import top_surface
+from .surface import band, top_surface
 
 __all__ = ["stress_tensor", "strain_tensor", "von_mises", "hydrostatic_pressure", "contact_residual"]
 
@@ -65,8 +65,7 @@ def contact_residual(result):
         raise ValueError("contact_residual needs the fields: call rolling_cylinder(..., keep_fields=True)")
     top = top_surface(f["basis"])
     x_c = np.asarray(result.x)
-    slack = 1e-12 * np.max(np.abs(x_c))  # the candidate band, which need not be symmetric (graded mesh)
-    cand = (top.x >= x_c.min() - slack) & (top.x <= x_c.max() + slack)
+    cand = band(top, x_c)
     w = -np.asarray(f["u"])[top.ydofs[cand]]
     x = top.x[cand]
     g = w + x**2 / (2 * result.radius) - result.approach

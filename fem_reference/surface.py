@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["TopSurface", "top_surface", "contact_edges"]
+__all__ = ["TopSurface", "top_surface", "band", "contact_edges"]
 
 
 @dataclass(frozen=True)
@@ -48,6 +48,17 @@ def top_surface(basis, axisymmetric=False):
         w[1::2] += 2 * d / 3
     assert np.allclose(xm, 0.5 * (x0 + x1), rtol=0, atol=1e-9 * np.max(np.abs(x)))
     return TopSurface(x, ydofs, w)
+
+
+def band(top, x_band):
+    """Mask of ``top``'s nodes from ``min(x_band)`` to ``max(x_band)`` (a candidate contact band,
+    which on a graded mesh need not be symmetric about ``x = 0``)."""
+    x_band = np.asarray(x_band, float)
+    slack = 1e-12 * np.max(np.abs(x_band))
+    mask = (top.x >= x_band.min() - slack) & (top.x <= x_band.max() + slack)
+    if np.count_nonzero(mask) != x_band.size:
+        raise ValueError(f"the band holds {np.count_nonzero(mask)} top nodes, expected {x_band.size}")
+    return mask
 
 
 def contact_edges(x, p, active):

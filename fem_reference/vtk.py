@@ -102,7 +102,7 @@ def interface_points(result):
     """A pyvista PolyData of the candidate contact band's top nodes (see module docstring)."""
     import pyvista as pv
 
-    from .surface import top_surface
+    from .surface import band, top_surface
 
     x = np.asarray(result.x, float)
     pts = np.zeros((x.size, 3))
@@ -118,7 +118,7 @@ def interface_points(result):
     f = result.fields
     if f:
         top = top_surface(f["basis"])
-        cand = np.abs(top.x) <= np.max(np.abs(x)) * (1 + 1e-12)
+        cand = band(top, x)
         u = np.asarray(f["u"])
         disp[:, 0] = u[top.ydofs[cand] - 1]  # the x DOF precedes the y DOF of each node
         disp[:, 1] = u[top.ydofs[cand]]

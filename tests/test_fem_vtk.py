@@ -96,6 +96,33 @@ def test_contact_residual_from_the_field_can_fail(rolled):
     assert contact_residual(replace(r, approach=r.approach * (1 + 1e-4))) > 0.9e-4
 
 
+def test_interface_of_a_graded_mesh_whose_band_is_not_symmetric(tmp_path):
+    """On the graded mesh the candidate band runs from its own trailing to its own leading end;
+    the interface written is that band, node by node, with its displacement from the field."""
+    pv = pytest.importorskip("pyvista")
+    from fem_reference.surface import top_surface
+
+    m = Material.from_prony(E0=1e6, moduli=np.full(3, 29e6 / 3), times=[1e-5, 1e-3, 1e-1], nu=0.5)
+    r = rolling_cylinder(
+        m,
+        radius=0.01,
+        load=100.0,
+        speed=1e-3,
+        mesh="graded",
+        resolution=1,
+        solver="splu",
+        keep_fields=True,
+        vtk=tmp_path / "g.vtm",
+    )
+    top = top_surface(r.fields["basis"])
+    # the case has teeth: a band symmetric about x = 0 would hold more nodes than the result
+    assert np.count_nonzero(np.abs(top.x) <= np.max(np.abs(r.x))) > r.x.size
+    iface = pv.read(tmp_path / "g.vtm")["interface"]
+    np.testing.assert_array_equal(iface.points[:, 0], r.x)
+    np.testing.assert_allclose(-iface.point_data["displacement"][:, 1], r.displacement, atol=1e-8 * abs(r.approach))
+    assert contact_residual(r) < 1e-8
+
+
 def test_vtu_of_the_block_alone(tmp_path):
     pv = pytest.importorskip("pyvista")
     m = Material.standard_linear_solid(E0=1e6, E_inf=3e6, relaxation_time=0.01, nu=0.5)
