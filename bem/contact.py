@@ -19,7 +19,8 @@ which costs no product (:mod:`bem.contact_newton`).
 - Preconditioners: ``R A^-1 R^T`` (full-contact inverse restricted to ``C``) on large grids;
   for strongly non-symmetric 2-D operators :mod:`bem.line_preconditioner`.
 - Nested iteration [4]: large grids start from the solution on the grid with half the points
-  per axis; the other first iterates are in :mod:`bem.contact_start`.
+  per axis, which takes any warm start; the fine grid keeps the warm start where its contact
+  set is nearer the coarse solution's than interpolation gets (:mod:`bem.contact_start`).
 - Retry (:func:`solve_contact`): a fast attempt, then one whose inner tolerances only
   tighten; strongly non-symmetric 2-D operators first try the line preconditioner.
 
@@ -50,7 +51,7 @@ from threadpoolctl import threadpool_limits
 from .contact_inner import max_phase
 from .contact_newton import Attempt, ContactSolution, attempt_solve, complementarity_residual
 from .contact_options import ContactOptions
-from .contact_start import coarse_start
+from .contact_start import coarse_start, prolong, restrict
 from .errors import ConvergenceError, InputError
 
 __all__ = ["ContactOptions", "ContactSolution", "complementarity_residual", "solve_contact"]
@@ -114,7 +115,8 @@ def solve_contact(
     # preconditioner's batches, which run on the FFT's cores themselves)
     with threadpool_limits(limits=1, user_api="blas"):
         coarse_matvecs, initial_approach = 0.0, None
-        if initial is None and options.coarsen:
+        if options.coarsen and (initial is None or options.coarsen_warm):
+            warm = None if initial is None else np.asarray(initial, dtype=float)
 
             def solve_coarse(coarse_op, coarse_heights):
                 return solve_contact(
@@ -124,13 +126,14 @@ def solve_contact(
                     approach=approach,
                     rtol=max(rtol, options.coarse_rtol),
                     maxiter=maxiter,
+                    initial=None if warm is None else restrict(warm),
                     raise_on_failure=False,
                     options=options,
                 )
 
-            initial, coarse_matvecs, initial_approach = coarse_start(
-                op, heights, solve_coarse, options.coarsen_min_size
-            )
+            coarse, coarse_matvecs, coarse_approach = coarse_start(op, heights, solve_coarse, options.coarsen_min_size)
+            if coarse is not None and (warm is None or _set_changes(warm, coarse) > _interpolation_changes(warm)):
+                initial, initial_approach = coarse, coarse_approach
         sol = _retry_policy(op, heights, maxiter, dict(problem, initial=initial, initial_approach=initial_approach))
     if coarse_matvecs:
         sol = replace(
@@ -142,6 +145,16 @@ def solve_contact(
     if not sol.success and raise_on_failure:
         raise ConvergenceError(sol.message, sol)
     return sol
+
+
+def _set_changes(warm, coarse):
+    """Contact points (fine-grid count) where the warm start's set differs from the new coarse solution's."""
+    return 2**warm.ndim * np.count_nonzero(restrict(warm > 0) != restrict(coarse > 0))
+
+
+def _interpolation_changes(warm):
+    """Contact points the round trip through the coarse grid moves: what the coarse start costs the set."""
+    return np.count_nonzero((prolong(restrict(warm)) > 0) != (warm > 0))
 
 
 def _retry_policy(op, heights, maxiter, problem):

@@ -134,6 +134,8 @@ class ContactOptions:
     """Tension share under which the clipped full-contact pressure is the start (it is nearly the answer)."""
     coarsen: bool = True
     """Start large even grids from the solution on the grid with half the points per axis (nested iteration)."""
+    coarsen_warm: bool = True
+    """A warm start (``initial``) goes to the coarse grid, whose solution then starts this one."""
     coarsen_min_size: int = 2**18
     """Grid points from which the coarse start pays: below it the first set is cheap to find anyway."""
     coarse_rtol: float = 1e-4

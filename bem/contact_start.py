@@ -2,12 +2,16 @@
 
 In order of preference:
 
-1. a warm start given by the caller (e.g. the solution at a neighbouring speed);
-2. on large periodic grids with even sides, the same problem solved on the grid with half
-   the points per axis and interpolated linearly (nested iteration, :func:`coarse_start`);
-   the first contact set is then the one a Newton step would pick from that pressure and
-   its gap at the coarse approach, ``p - c g > 0`` (interpolation makes the pressure
-   positive around every coarse contact point);
+1. on large periodic grids with even sides, the same problem solved on the grid with half
+   the points per axis (itself warm-started from the caller's warm start, sampled there) and
+   interpolated linearly (nested iteration, :func:`coarse_start`); the first contact set is
+   then the one a Newton step would pick from that pressure and its gap at the coarse
+   approach, ``p - c g > 0`` (interpolation makes the pressure positive around every coarse
+   contact point). A warm start is kept instead when, sampled on the coarse grid, its contact
+   set differs from the coarse solution's at fewer points than the round trip through the
+   coarse grid moves its own set: then it is the nearer of the two (along a friction curve,
+   where the contact changes little between neighbouring speeds);
+2. a warm start given by the caller (e.g. the solution at a neighbouring speed);
 3. for strongly non-symmetric operators (and non-symmetric 1-D ones, where smooth
    indenters on long cells need it), the contact of the operator's symmetric part, a
    robust CG solve stopped once its set cycles, unless under load control the clipped
@@ -38,6 +42,12 @@ def prolong(p):
         fine[tuple(index)] = mid
         p = fine
     return p
+
+
+def restrict(p):
+    """The values at the points of the grid with half the points per axis (coarse point ``i``
+    is fine point ``2i``, as in :func:`prolong`)."""
+    return np.ascontiguousarray(p[tuple(slice(0, None, 2) for _ in p.shape)])
 
 
 def coarse_start(op, heights, solve, min_size):

@@ -77,3 +77,26 @@ def test_rubber_speeds_benchmark_runs_from_the_cli(tmp_path):
     elastic = rows[None]["by_n"][n]["matvecs"]
     assert rows[1e-4]["max_phase_deg"] < 5 and rows[1e-4]["by_n"][n]["matvecs"] < 1.5 * elastic
     assert rows[1e4]["max_phase_deg"] < 45 and rows[1e4]["by_n"][n]["matvecs"] > 3 * elastic
+
+
+def test_curve_benchmark_runs_from_the_cli(tmp_path):
+    """`viscobem bench curve` writes its table; every sweep converges at every speed and finds
+    the same friction; the load gives about 15 % contact at the rubbery end; warm starts from
+    the neighbouring speed cost fewer products than cold starts (128²: 1831 against 2973)."""
+    import json
+
+    from viscobem_bench import curve
+    from viscobem_cli.main import main
+
+    assert main(["bench", "curve", "--quick", "--out", str(tmp_path)]) == 0
+    result = json.loads((tmp_path / "curve.json").read_text())
+    assert "| sweep | products |" in (tmp_path / "curve.md").read_text()
+    modes = result["modes"]
+    assert set(modes) == set(curve.MODES) and all(m["all_converged"] for m in modes.values())
+    assert len(modes["cold"]["rows"]) == len(curve.XIS) == 13
+    assert abs(modes["cold"]["rows"][0]["contact_fraction"] - curve.CONTACT) < 0.02
+    mu = np.array([[r["friction"] for r in m["rows"]] for m in modes.values()])
+    np.testing.assert_allclose(mu, np.broadcast_to(mu[0], mu.shape), rtol=1e-5, atol=1e-9)
+    assert modes["warm"]["products"] < 0.8 * modes["cold"]["products"]
+    unit = result["elastic"]["matvecs"]
+    assert modes["warm"]["products_in_elastic_solves"] == pytest.approx(modes["warm"]["products"] / unit)

@@ -6,8 +6,8 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
                                               built-in scene); rerun on the same DIR to resume
     viscobem scene [NAME]                     print a built-in scene (default: the template)
     viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem,
-                                              fem_convergence, isolated, rubber_speeds, import,
-                                              materials); writes only under DIR
+                                              fem_convergence, isolated, rubber_speeds, curve,
+                                              import, materials); writes only under DIR
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
@@ -252,7 +252,17 @@ def build_parser():
         "name",
         nargs="?",
         default="all",
-        choices=["all", "periodic", "fem", "fem_convergence", "isolated", "rubber_speeds", "import", "materials"],
+        choices=[
+            "all",
+            "periodic",
+            "fem",
+            "fem_convergence",
+            "isolated",
+            "rubber_speeds",
+            "curve",
+            "import",
+            "materials",
+        ],
         help="all (default: every solver, scaling, skipping), one detailed benchmark "
         "(fem_convergence: the FEM's observed orders in mesh size, domain size and time step), "
         "import (import time of bem against numpy + scipy), or materials (Prony fits "
