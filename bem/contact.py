@@ -15,15 +15,14 @@ which costs no product (:mod:`bem.contact_newton`).
 
 - Inexact Newton [3]: inner solves stop at a share ``eta`` of their right-hand side while
   the set changes, tightly once it has settled; ``eta`` tightens when a step on a nearly
-  settled set is damped, or when the residual stalls.
+  settled set is damped, when the residual stalls, and for good once the set stops
+  converging; it starts smaller on symmetric problems started from a coarser grid.
 - Preconditioners: ``R A^-1 R^T`` (full-contact inverse restricted to ``C``) on large grids;
   for strongly non-symmetric 2-D operators :mod:`bem.line_preconditioner`.
-- Nested iteration [4]: large grids start from the solution on the grid with half the points
-  per axis, which takes any warm start; the fine grid keeps the warm start where its contact
-  set is nearer the coarse solution's than interpolation gets (:mod:`bem.contact_start`).
+- Nested iteration [4]: large grids start from the grid with half the points per axis,
+  which takes any warm start (kept where nearer the answer, :mod:`bem.contact_start`).
 - Retry (:func:`solve_contact`): a fast attempt, then one whose inner tolerances only
   tighten; strongly non-symmetric 2-D operators first try the line preconditioner.
-
 Every tunable is a field of :class:`ContactOptions`, with what it trades and why.
 
 Convergence test, stated exactly: success when ``r = max_i |min(p_i / p_ref, g_i / h_ref)|

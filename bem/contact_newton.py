@@ -8,7 +8,7 @@ its :class:`Attempt`; the retry policy between attempts is in :mod:`bem.contact`
 """
 
 import logging
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -118,6 +118,8 @@ class ActiveSet:
     def __init__(self, op, pb, inner, attempt, rtol, options):
         self.op, self.pb, self.inner, self.attempt, self.rtol, self.o = op, pb, inner, attempt, rtol, options
         self.eta = attempt.inner_eta  # forcing term: tightened whenever a step had to be damped
+        self.eta_max = attempt.inner_eta  # ... and for good once the set oscillates
+        self.flips = None  # the points whose set membership the last step changed
         self.damped, self.ascents = not op.is_symmetric, 0
         self.fewest_changes, self.stalled = None, 0
 
@@ -143,13 +145,23 @@ class ActiveSet:
         return a.residual_stall is None or self.since_lowest < a.residual_stall
 
     def _count_changes(self, new):
-        """Set changes; cycling counts steps without a new low in them."""
-        changed = np.count_nonzero(new != self.contact)
+        """``(changes, converging)``: the set changes, and whether the set is still converging;
+        cycling counts steps without a new low in set changes.
+
+        Not converging: a step changes more than ``oscillation_decrease`` of the last step's
+        changes, and either more than the last step (the set diverges) or mostly by undoing
+        it (it oscillates); counts below ``tighten_changes`` are a settling set's and pass."""
+        flips = new != self.contact
+        changed = np.count_nonzero(flips)
+        undone = 0 if self.flips is None else np.count_nonzero(flips & self.flips)
+        before = 0 if self.flips is None else np.count_nonzero(self.flips)
+        self.flips = flips
         if self.fewest_changes is None or changed < self.fewest_changes:
             self.fewest_changes, self.stalled = changed, 0
         elif changed:
             self.stalled += 1
-        return changed
+        slow = before and changed > self.o.oscillation_decrease * before and changed > self.o.tighten_changes
+        return changed, not (slow and (changed > before or 2 * undone > changed))
 
     def _step_length(self, changed, p_new, g_new, residual_new):
         """Non-symmetric problems are damped by the line search; symmetric ones take plain
@@ -172,15 +184,22 @@ class ActiveSet:
         self.damped = self.damped or self.ascents >= self.o.ascents
         return t
 
-    def _adapt_eta(self, t, changed, new):
+    def _adapt_eta(self, t, changed, converging, new):
         """A damped step on a nearly settled set: the inner solves were too loose; a full step:
-        loosen them again (fast attempt). Earlier, damping comes from the set itself."""
+        loosen them again (fast attempt). Earlier, damping comes from the set itself. Once the
+        set stops converging the forcing term drops a decade, once, for the rest of the attempt:
+        the Newton points' errors flip points at the margin of the contact, and broad-band
+        roughness has many. The line-preconditioned attempt keeps its own tight forcing term;
+        the symmetric-part start only places the set, and its own cycling ends it."""
         o = self.o
         settled = changed <= max(o.tighten_changes, o.tighten_share * np.count_nonzero(new))
-        if t < 1.0 and self.inner.precondition != "lines" and settled:
+        own = self.inner.precondition != "lines" and not self.attempt.stop_when_cycling
+        if not converging and own and self.eta_max == self.attempt.inner_eta:
+            self.eta = self.eta_max = max(o.inner_tighten * self.eta_max, o.inner_eta_min)
+        elif t < 1.0 and self.inner.precondition != "lines" and settled:
             self.eta = max(o.inner_tighten * self.eta, o.inner_eta_min)
         elif self.attempt.relax_inner:
-            self.eta = min(self.attempt.inner_eta, o.inner_relax * self.eta)
+            self.eta = min(self.eta_max, o.inner_relax * self.eta)
 
     def step(self):
         pb = self.pb
@@ -188,13 +207,13 @@ class ActiveSet:
         new = np.greater(self.p, pb.c * self.g)  # p - c g > 0
         if not new.any():
             new = self.g == self.g.min()
-        changed = self._count_changes(new)
+        changed, converging = self._count_changes(new)
         # inexact Newton: loose inner solves while the set changes, tight once it has settled
         p_new, u_new, d_new = self.inner.newton_point(new, self.p, self.u, self.eta if changed else 0.0)
         g_new = u_new - pb.ht - d_new
         residual_new = complementarity_residual(p_new, g_new, pb.p_ref, pb.h_ref)
         t = self._step_length(changed, p_new, g_new, residual_new)
-        self._adapt_eta(t, changed, new)
+        self._adapt_eta(t, changed, converging, new)
         if t == 1.0:
             self.p, self.u, self.g, self.delta = p_new, u_new, g_new, d_new
         else:  # damped step: everything is affine along the segment
@@ -213,9 +232,10 @@ class ActiveSet:
             self.inner.tighten *= self.o.inner_tighten  # settled but stalled: inner accuracy too low
         if log.isEnabledFor(logging.DEBUG):
             log.debug(
-                "active set %d: %d changes, step %.3g, residual %.3e, contact %.4f, %d products",
+                "active set %d: %d changes%s, step %.3g, residual %.3e, contact %.4f, %d products",
                 self.outer,
                 changed,
+                "" if converging else " (not converging)",
                 t,
                 self.residual,
                 np.mean(self.p > 0),
@@ -271,6 +291,9 @@ def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, option
         symmetric_start=wants_symmetric_start(op, pb.ht, strongly_nonsymmetric, options),
         options=options,
     )
+    if initial_approach is not None and initial is not None and op.is_symmetric:
+        # nested iteration: the set is nearly right, Newton's local convergence needs tight solves
+        attempt = replace(attempt, inner_eta=min(attempt.inner_eta, options.nested_eta))
     it = ActiveSet(op, pb, inner, attempt, rtol, options)
     it.start(p, contact)
     if not pb.load_control and it.p.mean() > 0:  # displacement control: now the mean pressure is known

@@ -19,10 +19,12 @@ __all__ = ["ContactOptions"]
 _RANGES = {
     "inner_eta": (0.0, 1.0, False),
     "inner_eta_min": (0.0, 1.0, False),
+    "nested_eta": (0.0, 1.0, False),
     "gap_scale": (0.0, math.inf, False),
     "gap_scale_strong": (0.0, math.inf, False),
     "gap_floor_share": (0.0, 1.0, True),
     "inner_relax": (1.0, math.inf, True),
+    "oscillation_decrease": (0.0, math.inf, True),
     "inner_tighten": (0.0, 1.0, False),
     "inner_maxiter_per_sqrt_n": (0.0, math.inf, True),
     "inner_maxiter_base": (0, math.inf, True),
@@ -77,8 +79,15 @@ class ContactOptions:
     # Newton iteration and its inexact inner solves
     inner_eta: float = 0.1
     """Inner forcing term while the set changes: loose solves are cheap and the set is wrong anyway."""
+    nested_eta: float = 0.01
+    """Forcing term of symmetric problems started from the coarser grid (nested iteration), whose set is nearly
+    right: looser solves flip points at the margin of broad-band contacts (2048², 1024 scales: 397 -> 287
+    products). Non-symmetric ones keep ``inner_eta``: their GMRES pays more per decade (seed SLS 1024² +11 %)."""
     inner_eta_min: float = 1e-4
     """Tightest forcing term that damping may impose: below it an inexact step is as good as exact."""
+    oscillation_decrease: float = 0.7
+    """A set whose changes fall by less than this factor per step while growing, or mostly undoing the last
+    step's, is not converging: the forcing term drops a decade for good (converging sets halve their changes)."""
     inner_tighten: float = 0.1
     """Factor on the forcing term (and the floor) when a step had to be damped or stalled: one decade per step."""
     inner_relax: float = 3.0

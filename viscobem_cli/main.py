@@ -7,7 +7,8 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
     viscobem scene [NAME]                     print a built-in scene (default: the template)
     viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem,
                                               fem_convergence, isolated, rubber_speeds, curve,
-                                              import, materials); writes only under DIR
+                                              broadband, import, materials); writes only
+                                              under DIR
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
@@ -260,6 +261,7 @@ def build_parser():
             "isolated",
             "rubber_speeds",
             "curve",
+            "broadband",
             "import",
             "materials",
         ],
