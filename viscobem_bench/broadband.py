@@ -20,7 +20,7 @@ import time
 
 import bem
 from viscobem_bench import _measure
-from viscobem_bench.periodic_report import publish, table
+from viscobem_bench.periodic_report import finish, table
 
 LENGTH, LOAD, SEED_LOAD, E = 0.01, 50.0, 25.0, 1e7
 SURFACE = dict(hurst=0.8, rms_slope=0.1, seed=1)
@@ -67,17 +67,8 @@ def run(quick=False, out_dir=None, sizes=None, seed=False, echo=print):
                 f"n = {n:5d}, {r['scales']:4d} scales, {name:7s}: {r['matvecs']:5d} products, "
                 f"{r['iterations']:3d} iterations, {r['wall_time']:7.1f} s, contact {r['contact_fraction']:.3f}"
             )
-    result = dict(
-        benchmark="broadband",
-        date=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-        rtol=RTOL,
-        points_per_wavelength=POINTS_PER_WAVELENGTH,
-        surface=SURFACE,
-        rows=rows,
-        total_time=time.perf_counter() - started,
-    )
-    publish(result, _report, out_dir, "broadband", echo)
-    return result
+    fields = dict(rtol=RTOL, points_per_wavelength=POINTS_PER_WAVELENGTH, surface=SURFACE, rows=rows)
+    return finish("broadband", started, _report, out_dir, echo, **fields)
 
 
 def _report(result, markdown=False):

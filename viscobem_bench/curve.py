@@ -30,7 +30,7 @@ import numpy as np
 import bem
 from bem.contact import ContactOptions
 from viscobem_bench.periodic_problem import LENGTH, load_for_contact, materials, surface_heights
-from viscobem_bench.periodic_report import publish, table
+from viscobem_bench.periodic_report import finish, table
 
 XIS = tuple(np.logspace(-6, 4, 13))
 SIZE, QUICK_SIZE = 512, 128
@@ -112,20 +112,8 @@ def run(quick=False, out_dir=None, size=None, echo=print):
             f"{name:15s} {products:6d} products = {modes[name]['products_in_elastic_solves']:5.1f} elastic solves, "
             f"{total:6.2f} s = {modes[name]['time_in_elastic_solves']:5.1f} elastic solves"
         )
-    result = dict(
-        benchmark="curve",
-        date=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-        n=n,
-        rtol=RTOL,
-        xis=list(XIS),
-        speeds_m_s=speeds.tolist(),
-        load_N=load,
-        elastic=unit,
-        modes=modes,
-        total_time=time.perf_counter() - started,
-    )
-    publish(result, _report, out_dir, "curve", echo)
-    return result
+    fields = dict(n=n, rtol=RTOL, xis=list(XIS), speeds_m_s=speeds.tolist(), load_N=load, elastic=unit, modes=modes)
+    return finish("curve", started, _report, out_dir, echo, **fields)
 
 
 def _report(result, markdown=False):

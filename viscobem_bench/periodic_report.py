@@ -150,6 +150,17 @@ def targets(cases, tamaas_runs):
     return out
 
 
+def finish(stem, started, report, out_dir, echo=print, **fields):
+    """The record of benchmark ``stem`` (its name, the UTC date, ``fields`` and the time since
+    ``started``, a ``time.perf_counter()``), published as :func:`publish` does; returns it."""
+    import time
+
+    result = dict(benchmark=stem, date=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()), **fields)
+    result["total_time"] = time.perf_counter() - started
+    publish(result, report, out_dir, stem, echo)
+    return result
+
+
 def publish(result, report, out_dir, stem, echo=print):
     """Print ``report(result)``; with ``out_dir``, write ``stem.json`` and ``stem.md`` there."""
     echo(report(result))
