@@ -85,7 +85,7 @@ def _tamaas_version(wanted, echo):
         import tamaas
     except ImportError:
         if wanted:
-            echo("tamaas not installed (pip install viscobem[bench]): skipping the tamaas comparison")
+            echo('tamaas not installed (pip install "viscobem[tamaas]"): skipping the tamaas comparison')
         return None
     return tamaas.__version__
 
