@@ -119,7 +119,7 @@ class ActiveSet:
         self.op, self.pb, self.inner, self.attempt, self.rtol, self.o = op, pb, inner, attempt, rtol, options
         self.eta = attempt.inner_eta  # forcing term: tightened whenever a step had to be damped
         self.eta_max = attempt.inner_eta  # ... and for good once the set oscillates
-        self.flips = None  # the points whose set membership the last step changed
+        self.flips, self.changes = None, 0  # the points whose set membership the last step changed, and their count
         self.damped, self.ascents = not op.is_symmetric, 0
         self.fewest_changes, self.stalled = None, 0
 
@@ -154,8 +154,7 @@ class ActiveSet:
         flips = new != self.contact
         changed = np.count_nonzero(flips)
         undone = 0 if self.flips is None else np.count_nonzero(flips & self.flips)
-        before = 0 if self.flips is None else np.count_nonzero(self.flips)
-        self.flips = flips
+        before, self.flips, self.changes = self.changes, flips, changed
         if self.fewest_changes is None or changed < self.fewest_changes:
             self.fewest_changes, self.stalled = changed, 0
         elif changed:

@@ -14,7 +14,7 @@ from bem.contact_newton import ActiveSet
 def _tracker(options=None):
     """An ActiveSet reduced to what counting set changes needs."""
     it = ActiveSet.__new__(ActiveSet)
-    it.o, it.flips, it.fewest_changes, it.stalled = options or ContactOptions(), None, None, 0
+    it.o, it.flips, it.changes, it.fewest_changes, it.stalled = options or ContactOptions(), None, 0, None, 0
     it.contact = np.zeros(10_000, bool)
     return it
 
