@@ -31,6 +31,7 @@ class _SuperLU:
         # equilibration (row and column scaling) keeps the residual of the condensed
         # rubber systems at 2e-10 where the unscaled factorisation stalls at 7e-8
         self._lu = spla.splu(sp.csc_matrix(A), permc_spec="COLAMD", options={"Equil": True})
+        self.nnz = int(self._lu.L.nnz + self._lu.U.nnz)  # entries of the factors (fill-in included)
 
     def solve(self, b):
         return self._lu.solve(np.asarray(b, dtype=float))
@@ -49,12 +50,13 @@ class _Pardiso:
 
         self._solver = pypardiso.PyPardisoSolver()
         self._solver.set_matrix_type(11)  # real non-symmetric
-        for key, value in {1: 1, 2: 2, 8: 20, 10: 8, 11: 1, 13: 1}.items():
-            self._solver.set_iparm(key, value)  # 1-based iparm: METIS, refinement, matching
+        for key, value in {1: 1, 2: 2, 8: 20, 10: 8, 11: 1, 13: 1, 18: -1}.items():
+            self._solver.set_iparm(key, value)  # 1-based iparm: METIS, refinement, matching, report fill
         self._solver.set_statistical_info_off()
         self._A = sp.csr_matrix(A)
         self._A.sort_indices()
         self._solver.factorize(self._A)
+        self.nnz = int(self._solver.get_iparm(18))  # entries of the factors, as PARDISO reports them
 
     def solve(self, b):
         return self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
@@ -70,7 +72,8 @@ def pardiso_available():
 
 
 def factorize(A, solver="auto"):
-    """Factor the square sparse matrix ``A``; returns an object with ``solve(b)``.
+    """Factor the square sparse matrix ``A``; returns an object with ``solve(b)``, ``name`` and
+    ``nnz`` (the entries of the factors, fill-in included).
 
     Parameters
     ----------
