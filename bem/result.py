@@ -19,7 +19,7 @@ class SlidingResult:
         Normal surface displacement (m, positive into the solid). Periodic cells: zero mean
         (the periodic half-space has no defined mean displacement; the approach carries it).
         Isolated 2-D contacts: absolute (zero at infinity); isolated profiles: up to the
-        constant of plane strain (see :mod:`bem.isolated`).
+        constant of plane strain (see :mod:`bem.halfspace.isolated`).
     gap : ndarray
         ``displacement - (h - max(h) + approach)`` (m), >= 0, zero in contact.
     approach : float

@@ -10,7 +10,7 @@ derivative of the heights. They coincide in full contact and converge together a
 grid resolves the contact spots. ``dissipated_power = friction * F_N * speed`` (W, or
 W/m for profiles).
 
-Isolated contacts (``periodic=False``, :mod:`bem.isolated`): the domain is the array and
+Isolated contacts (``periodic=False``, :mod:`bem.halfspace.isolated`): the domain is the array and
 pressure outside it is zero. ``friction`` is again the dissipation form, collocated like the
 displacement: ``-sum_j p_j u'(x_j) d**ndim`` with the exact slope of the displacement at the
 element centres (see ``IsolatedHalfSpace.dissipation_integral``: the exact dissipation of the
@@ -30,11 +30,11 @@ from . import fft
 from .checks import check_array, check_int, check_keywords, check_positive, show
 from .contact import ContactOptions, solve_contact
 from .errors import ConvergenceError, InputError
-from .isolated import IsolatedHalfSpace
-from .material import Material
-from .periodic import PeriodicHalfSpace
+from .halfspace.isolated import IsolatedHalfSpace
+from .halfspace.periodic import PeriodicHalfSpace
+from .materials.material import Material
 from .result import SlidingResult
-from .surface import Surface
+from .surfaces.surface import Surface
 
 __all__ = ["SlidingResult", "solve"]
 
@@ -60,7 +60,7 @@ def _material_key(material):
 
 def operator_for(surface, material, speed, periodic=True):
     """The (cached) response operator of this grid, material and speed: periodic cell or
-    isolated domain (:class:`~bem.isolated.IsolatedHalfSpace`)."""
+    isolated domain (:class:`~bem.halfspace.isolated.IsolatedHalfSpace`)."""
     key = (bool(periodic), surface.shape, surface.length, _material_key(material), float(speed))
     op = _operators.get(key)
     if op is None:
@@ -101,7 +101,7 @@ def check_inputs(surface, material, speed, load, approach, rtol):
 
 
 _ISOLATED_METHODS = ("auto", "uniform", "adaptive")
-# keywords of bem.adaptive.solve_adaptive that solve() passes on with method="adaptive"
+# keywords of bem.halfspace.adaptive.solve_adaptive that solve() passes on with method="adaptive"
 ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling", "height", "max_elements")
 _SOLVE_KEYWORDS = (
     "speed",
@@ -173,14 +173,14 @@ def solve(
     approach : float, optional
         Displacement control instead of ``load``: rigid approach (m) from first touch.
     periodic : bool
-        ``True``: periodic cell (:mod:`bem.periodic`). ``False``: isolated contact on a
-        half-space, the array being the whole loaded domain (:mod:`bem.isolated`), e.g.
+        ``True``: periodic cell (:mod:`bem.halfspace.periodic`). ``False``: isolated contact on a
+        half-space, the array being the whole loaded domain (:mod:`bem.halfspace.isolated`), e.g.
         :func:`bem.surfaces.sphere` or :func:`bem.surfaces.cylinder`.
     method : str
         Periodic cells: ``"auto"`` or ``"active-set"`` (the same primal–dual active-set
         solver with CG (elastic) or GMRES (viscoelastic) inner solves). Isolated contacts:
         ``"uniform"`` (DC-FFT on the uniform grid), ``"adaptive"`` (non-uniform mesh,
-        :func:`bem.adaptive.solve_adaptive`, given ``adaptive_options``) or ``"auto"``.
+        :func:`bem.halfspace.adaptive.solve_adaptive`, given ``adaptive_options``) or ``"auto"``.
     rtol : float
         Tolerance on the complementarity residual (see :mod:`bem.contact`).
     maxiter : int
@@ -227,8 +227,7 @@ def solve(
     # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
     theta, turns = sliding_direction.plan(direction, surface.ndim, periodic, method)
     if turns:
-        return sliding_direction.solve_turned(
-            solve,
+        return _solve_turned(
             surface,
             material,
             turns,
@@ -266,7 +265,7 @@ def solve(
                 "approach (displacement control) is not available with method='adaptive'; "
                 "give load (N, or N/m for profiles)"
             )
-        from .adaptive.solver import solve_adaptive
+        from .halfspace.adaptive.solver import solve_adaptive
 
         return solve_adaptive(
             surface,
@@ -291,7 +290,10 @@ def solve(
                 f"contact and the load is unbounded (zero-mean displacement), got {show(approach)}"
             )
     t0 = time.perf_counter()
-    op = sliding_direction.operator(operator_for, surface, material, speed, periodic, theta)
+    if theta == 0.0:
+        op = operator_for(surface, material, speed, periodic)
+    else:
+        op = sliding_direction.directed_operator(surface, material, speed, theta, periodic)
     area = op.area
     sol = solve_contact(
         op,
@@ -349,3 +351,27 @@ def _friction_isolated(op, surface, p, total):
     friction = op.dissipation_integral(p) / total
     dhdx = np.gradient(surface.heights, op.spacing, axis=0)
     return friction, float(-np.sum(p * dhdx) * op.spacing**surface.ndim / total)
+
+
+def _solve_turned(surface, material, turns, *, initial=None, **options):
+    """:func:`solve` along ``+x`` on the heights turned by ``-turns`` quarter turns, fields turned
+    back (:mod:`bem.direction`). A :class:`~bem.errors.ConvergenceError` carries the turned-back
+    result too."""
+    if options.get("height") is not None:
+        raise InputError(
+            "direction must be 0 with an exact height function (height=...): the function is "
+            "given in the surface's frame; turn the surface instead"
+        )
+    try:
+        result = solve(
+            sliding_direction.turn_surface(surface, turns),
+            material,
+            initial=sliding_direction.turn_array(initial, turns),
+            direction=0.0,
+            **options,
+        )
+    except ConvergenceError as err:
+        if err.result is not None:
+            err.result = sliding_direction.turn_back(err.result, turns)
+        raise
+    return sliding_direction.turn_back(result, turns)

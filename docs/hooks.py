@@ -4,7 +4,7 @@ A page holds a marker comment where a generated block goes:
 
 - ``<!-- generated:scene-keys -->``: every scene key the parser accepts
   (``viscobem_cli.scene.SCHEMA``), with the type, unit, default, range and meaning from the
-  code's table of keys (``viscobem_cli.schema.KEYS``); then the built-in scenes, read from
+  code's table of keys (``viscobem_cli.scene.schema.KEYS``); then the built-in scenes, read from
   their TOML files.
 - ``<!-- generated:validation -->``: the latest validation report (``docs/validation/``:
   ``report.json`` rendered by ``validation.report``, else ``report.md``) and the quick set's
@@ -48,7 +48,7 @@ _gallery = {}  # example stem -> (stdout, figure site path or None)
 
 def _key_table():
     """{section: {key: {type, unit, default, range, doc}}} from the code's table of scene keys."""
-    from viscobem_cli import schema
+    from viscobem_cli.scene import schema
 
     table = {}
     for k in schema.KEYS:

@@ -8,7 +8,7 @@ import numpy as np
 from _common import figure
 
 import bem
-from validation.hunter import rolling_cylinder
+from validation.references.hunter import rolling_cylinder
 
 material = bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)
 R, P = 0.01, 1000.0  # m, N/m

@@ -7,7 +7,7 @@ import numpy as np
 from _common import figure
 
 import bem
-from validation.westergaard import westergaard
+from validation.references.westergaard import westergaard
 
 E, nu = 1e7, 0.5
 wavelength, amplitude = 1e-3, 1e-5  # m

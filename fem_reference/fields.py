@@ -14,10 +14,12 @@ import numpy as np
 
 from .surface import band, top_surface
 
-__all__ = ["stress_tensor", "strain_tensor", "von_mises", "hydrostatic_pressure", "contact_residual"]
+__all__ = ["full_tensor", "stress_tensor", "strain_tensor", "von_mises", "hydrostatic_pressure", "contact_residual"]
 
 
-def _tensor(xx, yy, zz, xy):
+def full_tensor(xx, yy, zz, xy):
+    """Rows of 3x3 tensors, row-major (VTK's order), from the normal components and one shear
+    ``xy`` (the ``xz`` and ``yz`` shears are zero in plane strain and axisymmetry)."""
     out = np.zeros((xx.size, 9))
     out[:, 0], out[:, 4], out[:, 8] = xx, yy, zz
     out[:, 1] = out[:, 3] = xy
@@ -28,13 +30,13 @@ def stress_tensor(sigma, p):
     """Full Cauchy stress (Pa) from the in-plane Voigt ``sigma`` (n, 3) and pressure ``p`` (n,)."""
     sigma = np.asarray(sigma, float).reshape(-1, 3)
     p = np.asarray(p, float).ravel()
-    return _tensor(sigma[:, 0], sigma[:, 1], -3.0 * p - sigma[:, 0] - sigma[:, 1], sigma[:, 2])
+    return full_tensor(sigma[:, 0], sigma[:, 1], -3.0 * p - sigma[:, 0] - sigma[:, 1], sigma[:, 2])
 
 
 def strain_tensor(eps):
     """Full small strain from the Voigt ``eps`` (n, 3) (engineering shear halved; ``eps_zz = 0``)."""
     eps = np.asarray(eps, float).reshape(-1, 3)
-    return _tensor(eps[:, 0], eps[:, 1], np.zeros(eps.shape[0]), 0.5 * eps[:, 2])
+    return full_tensor(eps[:, 0], eps[:, 1], np.zeros(eps.shape[0]), 0.5 * eps[:, 2])
 
 
 def von_mises(tensor):

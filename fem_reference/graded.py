@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from bem.material import Material
+from bem.materials.material import Material
 
 from .grading import graded_coordinates
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from bem.checks import check_array, check_int, check_positive
 from bem.errors import ConvergenceError, InputError
-from bem.material import Material
+from bem.materials.material import Material
 
 from .axisymmetric import AxisymmetricStepper, fixed_dofs_axisymmetric
 from .contact import COMPLEMENTARITY_LIMIT, complementarity_residual, gap_scale, solve_load_control

@@ -5,7 +5,7 @@ import numpy as np
 
 from bem.checks import check_int, check_positive
 from bem.errors import InputError
-from bem.material import Material
+from bem.materials.material import Material
 
 
 def hertz_half_width(E, nu, radius, load):

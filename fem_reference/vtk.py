@@ -180,13 +180,13 @@ def _axisymmetric_strain(v):
     """Full tensors from axisymmetric Voigt ``(rr, zz, tt, rz)`` with engineering shear (x = r,
     y = z, z = theta)."""
     v = np.asarray(v, float).reshape(-1, 4)
-    return derived._tensor(v[:, 0], v[:, 1], v[:, 2], 0.5 * v[:, 3])
+    return derived.full_tensor(v[:, 0], v[:, 1], v[:, 2], 0.5 * v[:, 3])
 
 
 def _axisymmetric_stress(v):
     """Full tensors (Pa) from axisymmetric Voigt stresses ``(rr, zz, tt, rz)`` (x = r, y = z, z = theta)."""
     v = np.asarray(v, float).reshape(-1, 4)
-    return derived._tensor(v[:, 0], v[:, 1], v[:, 2], v[:, 3])
+    return derived.full_tensor(v[:, 0], v[:, 1], v[:, 2], v[:, 3])
 
 
 def _indentation_snapshot(snap, ops, material, radius, r, top, meta):

@@ -22,7 +22,7 @@ except ImportError:  # only a speed-up: single-threaded BLAS for many small dens
 
 
 from bem import Material
-from validation.periodic_exact import murty_lcp  # the dense reference's LCP solver (Murty)
+from validation.references.periodic_exact import murty_lcp  # the dense reference's LCP solver (Murty)
 
 
 def make_seed():

@@ -40,7 +40,7 @@ def _modules_after(statement):
 
 @pytest.fixture(scope="module")
 def after_import():
-    return _modules_after("import bem, bem.surfaces, bem.statistics, bem.periodic, bem.contact")
+    return _modules_after("import bem, bem.surfaces, bem.surfaces.statistics, bem.halfspace.periodic, bem.contact")
 
 
 @pytest.mark.parametrize("name", FORBIDDEN)

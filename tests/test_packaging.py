@@ -78,13 +78,20 @@ def test_import_bem_is_lazy():
     import sys
 
     code = (
-        "import sys, json, bem; before = sorted(sys.modules); bem.solve; bem.persson; "
+        "import sys, json, bem; before = sorted(sys.modules); bem.solve; bem.analysis.persson; "
         "print(json.dumps([before, sorted(sys.modules), sorted(dir(bem))]))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT)
     before, after, names = json.loads(out.stdout)
-    for heavy in ("scipy.signal", "scipy.optimize", "bem.persson", "bem.anisotropy", "bem.sliding", "bem.material"):
+    for heavy in (
+        "scipy.signal",
+        "scipy.optimize",
+        "bem.analysis.persson",
+        "bem.analysis.anisotropy",
+        "bem.sliding",
+        "bem.materials.material",
+    ):
         assert heavy not in before
-    assert "bem.sliding" in after and "bem.persson" in after
+    assert "bem.sliding" in after and "bem.analysis.persson" in after
     assert "scipy.signal" not in after  # imported only by the function that filters
     assert {"solve", "friction_curve", "Material", "surfaces", "anisotropy", "persson"} <= set(names)

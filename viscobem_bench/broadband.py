@@ -19,8 +19,8 @@ import sys
 import time
 
 import bem
-from viscobem_bench import _measure
-from viscobem_bench.periodic_report import finish, table
+from viscobem_bench import instruments
+from viscobem_bench.periodic.report import finish, table
 
 LENGTH, LOAD, SEED_LOAD, E = 0.01, 50.0, 25.0, 1e7
 SURFACE = dict(hurst=0.8, rms_slope=0.1, seed=1)
@@ -56,7 +56,7 @@ def run(quick=False, out_dir=None, sizes=None, seed=False, echo=print):
                     matvecs=res.matvecs,
                     iterations=res.iterations,
                     wall_time=res.wall_time,
-                    peak_rss=_measure.peak_rss(),
+                    peak_rss=instruments.peak_rss(),
                     contact_fraction=res.contact_fraction,
                     success=res.success,
                     message=res.message,

@@ -6,8 +6,8 @@ Adding a solver takes one function and a decorator (the isolated uniform and ada
 entries, against Hunter's exact rolling cylinder, are written this way)::
 
     def _isolated_group(group, quick):  # runs in a fresh process; returns a list of points
-        ...  # build the sphere on group["n"]², solve per rtol, compare with validation.hertz
-        return [{"n": n, "rtol": rtol, "error": err, "time": t, "peak_rss": _measure.peak_rss()}]
+        ...  # build the sphere on group["n"]², solve per rtol, compare with validation.references.hertz
+        return [{"n": n, "rtol": rtol, "error": err, "time": t, "peak_rss": instruments.peak_rss()}]
 
     @register("isolated-hertz", solver="isolated BEM", measure=_isolated_group, knobs=("n", "rtol"),
               problem="rigid sphere on an SLS", reference="Hertz (exact, both limits)",
@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from viscobem_bench import _measure
+from viscobem_bench import instruments
 
 L = 0.01  # m: the cell of every periodic case (tamaas worker of viscobem_bench.periodic uses it too)
 E_ELASTIC = 1e7  # Pa
@@ -49,7 +49,7 @@ class SolverBenchmark:
     knobs: tuple
     groups: Callable
     measure: Callable
-    env: dict = field(default_factory=lambda: _measure.thread_environment(1))
+    env: dict = field(default_factory=lambda: instruments.thread_environment(1))
 
 
 REGISTRY = {}
@@ -68,7 +68,7 @@ def register(name, *, solver, problem, reference, error, knobs, measure, env=Non
             tuple(knobs),
             groups,
             measure,
-            env or _measure.thread_environment(1),
+            env or instruments.thread_environment(1),
         )
         return groups
 
@@ -84,7 +84,7 @@ def timed(func):
 # ---------------------------------------------------------------- periodic BEM, Westergaard
 def _westergaard_group(group, quick):
     import bem
-    from validation.westergaard import westergaard
+    from validation.references.westergaard import westergaard
 
     n, amplitude = group["n"], 1e-6
     m = bem.Material.elastic(E_ELASTIC)
@@ -103,7 +103,7 @@ def _westergaard_group(group, quick):
                 "rtol": rtol,
                 "error": err,
                 "time": t,
-                "peak_rss": _measure.peak_rss(),
+                "peak_rss": instruments.peak_rss(),
                 "iterations": res.iterations,
                 "matvecs": res.matvecs,
                 "contact_fraction": res.contact_fraction,
@@ -176,7 +176,7 @@ def _rough_group(group, quick):
                 "rtol": rtol,
                 "friction": res.friction,
                 "time": t,
-                "peak_rss": _measure.peak_rss(),
+                "peak_rss": instruments.peak_rss(),
                 "iterations": res.iterations,
                 "matvecs": res.matvecs,
                 "contact_fraction": res.contact_fraction,
@@ -225,9 +225,9 @@ def _rough_finish(points):
 
 # ---------------------------------------------------------------- FEM, Hunter
 def _fem_group(group, quick):
-    from viscobem_bench.fem import _rolling_case, _sls
+    from viscobem_bench.fem import rolling_case, standard_solid
 
-    r = _rolling_case(_sls(), 1.0, group["resolution"], group["domain"])
+    r = rolling_case(standard_solid(), 1.0, group["resolution"], group["domain"])
     return [
         {
             "resolution": group["resolution"],
@@ -235,7 +235,7 @@ def _fem_group(group, quick):
             "error": abs(r["friction_error"]),
             "peak_pressure_error": abs(r["peak_pressure_error"]),
             "time": r["wall_s"],
-            "peak_rss": _measure.peak_rss(),
+            "peak_rss": instruments.peak_rss(),
             "unknowns": r["unknowns"],
         }
     ]
@@ -245,7 +245,7 @@ def _fem_group(group, quick):
     "fem-hunter",
     solver="FEM (scikit-fem)",
     measure=_fem_group,
-    env=_measure.thread_environment(2),
+    env=instruments.thread_environment(2),
     problem="rigid cylinder rolling on an SLS (E_inf/E0 = 3), V lambda = a0, P = 100 N/m, R = 10 mm",
     reference="Hunter (exact)",
     error="rel. friction error",
@@ -261,21 +261,21 @@ def _fem(quick):
 # ---------------------------------------------------------------- isolated BEM (uniform, adaptive), Hunter
 def _hunter_reference(factor):
     """Hunter's exact friction and peak pressure for viscobem_bench.isolated's cylinder problem."""
-    from validation.hunter import rolling_cylinder
-    from viscobem_bench.isolated import LOADS, RADIUS, _a0, _material
+    from validation.references.hunter import rolling_cylinder
+    from viscobem_bench.isolated import LOADS, RADIUS, contact_half_width, seed_material
 
-    m = _material()
+    m = seed_material()
     exact = rolling_cylinder(
-        m, radius=RADIUS, load=LOADS["cylinder"], speed=factor * _a0("cylinder", m) / m.creep_times[0]
+        m, radius=RADIUS, load=LOADS["cylinder"], speed=factor * contact_half_width("cylinder", m) / m.creep_times[0]
     )
     return exact.friction, exact.peak_pressure
 
 
 def _isolated_group(group, quick):
-    from viscobem_bench.isolated import _case
+    from viscobem_bench.isolated import run_case
 
     mu, peak = _hunter_reference(group["factor"])
-    row = _case("cylinder", group["factor"], group["method"], group["n"], group.get("levels", 0))
+    row = run_case("cylinder", group["factor"], group["method"], group["n"], group.get("levels", 0))
     error = max(abs(row["friction"] / mu - 1), abs(row["peak_pressure"] / peak - 1))
     return [
         {
@@ -283,7 +283,7 @@ def _isolated_group(group, quick):
             "levels": group.get("levels", 0),
             "error": error,
             "time": row["wall_s"],
-            "peak_rss": _measure.peak_rss(),
+            "peak_rss": instruments.peak_rss(),
             "friction_error": abs(row["friction"] / mu - 1),
             "peak_pressure_error": abs(row["peak_pressure"] / peak - 1),
             "iterations": row["iterations"],

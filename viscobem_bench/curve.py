@@ -16,7 +16,7 @@ Three ways of sweeping are measured, each at rtol 1e-8:
 
 - ``cold``: every speed from scratch (large grids start from the grid with half the points);
 - ``warm``: :func:`bem.friction_curve`, each speed warm-started from the neighbour's solution
-  (on large grids the warm start goes through the coarse grid, see :mod:`bem.contact_start`);
+  (on large grids the warm start goes through the coarse grid, see :mod:`bem.contact.start`);
 - ``warm_fine_only``: the same warm starts with ``ContactOptions(coarsen_warm=False)``, the
   neighbour's solution used as it is on the fine grid.
 """
@@ -29,8 +29,8 @@ import numpy as np
 
 import bem
 from bem.contact import ContactOptions
-from viscobem_bench.periodic_problem import LENGTH, load_for_contact, materials, surface_heights
-from viscobem_bench.periodic_report import finish, table
+from viscobem_bench.periodic.problem import LENGTH, load_for_contact, materials, surface_heights
+from viscobem_bench.periodic.report import finish, table
 
 XIS = tuple(np.logspace(-6, 4, 13))
 SIZE, QUICK_SIZE = 512, 128

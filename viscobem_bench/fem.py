@@ -4,7 +4,7 @@ Cases (all SI; R = 10 mm):
 
 - ``rolling``: a standard linear solid (E0 = 1 MPa, E_inf/E0 = 3, nu = 0.5) rolling at
   retardation length ``V lambda = ell a0`` under P = 100 N/m, against Hunter's exact
-  solution (validation.hunter): friction and peak-pressure errors over mesh resolution
+  solution (validation.references.hunter): friction and peak-pressure errors over mesh resolution
   (elements per glassy half-width) and domain size (in units of ``V lambda``);
 - ``solvers``: the same rolling case factorised with SuperLU and, if installed, PARDISO;
 - ``indentation``: creep under a step load (P = 1 N) against Lee & Radok, over mesh
@@ -16,7 +16,7 @@ Cases (all SI; R = 10 mm):
   peak pressure, edges over the contact width), with unknowns, assemble / factor /
   flexibility / contact times, linear residual and peak memory.
 
-Each case runs in a fresh interpreter (:func:`viscobem_bench._measure.run_in_fresh_process`)
+Each case runs in a fresh interpreter (:func:`viscobem_bench.instruments.run_in_fresh_process`)
 with BLAS/MKL threads pinned to 2, so its peak resident set size is its own.
 
 Run: ``python -m viscobem_bench.fem --quick --out DIR`` (writes ``DIR/fem_benchmark.json``).
@@ -28,23 +28,23 @@ import time
 
 import numpy as np
 
-from viscobem_bench._measure import bench_main, peak_rss, run_in_fresh_process, thread_environment, write_record
+from viscobem_bench.instruments import bench_main, peak_rss, run_in_fresh_process, thread_environment, write_record
 
 
 def _peak_rss_mb():
     return peak_rss() / 2**20
 
 
-def _sls():
+def standard_solid():
     from bem import Material
 
     return Material.standard_linear_solid(E0=1e6, E_inf=3e6, relaxation_time=0.01, nu=0.5)
 
 
-def _rolling_case(material, ell, resolution, domain_factor, solver="auto", grading=1.3):
+def rolling_case(material, ell, resolution, domain_factor, solver="auto", grading=1.3):
     from fem_reference import rolling_cylinder
-    from validation import hunter
-    from validation.hertz import line_contact
+    from validation.references import hunter
+    from validation.references.hertz import line_contact
 
     R, P = 0.01, 100.0
     a0 = line_contact(material.E0, material.nu, R, P).a
@@ -215,11 +215,11 @@ def rubber_rows(quick=True, fresh=None):
         "peak_rss_mb",
     ]
     print("\nrubbers on the graded mesh vs the isolated BEM (SuperLU)")
-    print(_table(rows, cols))
+    print(table(rows, cols))
     return rows
 
 
-def _table(rows, cols):
+def table(rows, cols):
     lines = ["  ".join(f"{c:>14s}" for c in cols)]
     for row in rows:
         cells = []
@@ -239,14 +239,14 @@ def run(quick: bool = True, out_dir=".") -> dict:
     def fresh(func, *args):
         return run_in_fresh_process(func, *args, env=env)
 
-    m = _sls()
+    m = standard_solid()
     resolutions = [2, 3, 4] if quick else [2, 3, 4, 6, 8]
     domains = [3, 10, 30] if quick else [3, 10, 30, 100]
-    rolling = [fresh(_rolling_case, m, 1.0, n, 30) for n in resolutions]
-    rolling += [fresh(_rolling_case, m, 10.0, 3, d) for d in domains]
-    rolling += [fresh(_rolling_case, m, 100.0, n, 30, "auto", 2.0) for n in ([3, 5] if quick else [3, 5, 8])]
+    rolling = [fresh(rolling_case, m, 1.0, n, 30) for n in resolutions]
+    rolling += [fresh(rolling_case, m, 10.0, 3, d) for d in domains]
+    rolling += [fresh(rolling_case, m, 100.0, n, 30, "auto", 2.0) for n in ([3, 5] if quick else [3, 5, 8])]
     solvers = ["splu"] + (["pardiso"] if pardiso_available() else [])
-    solver_rows = [fresh(_rolling_case, m, 1.0, 4 if quick else 6, 30, s) for s in solvers]
+    solver_rows = [fresh(rolling_case, m, 1.0, 4 if quick else 6, 30, s) for s in solvers]
     ind = [fresh(_indentation_case, n, 20) for n in ([4, 6] if quick else [4, 6, 8, 12])]
 
     cols = [
@@ -262,16 +262,16 @@ def run(quick: bool = True, out_dir=".") -> dict:
         "peak_rss_mb",
     ]
     print("rolling cylinder vs Hunter (SLS, E_inf/E0 = 3, nu = 0.5)")
-    print(_table(rolling, cols))
+    print(table(rolling, cols))
     print("\nsparse direct solvers (same case)")
     srows = [
         dict(r, factor_s=r["timings"]["assemble_factor"], flexibility_s=r["timings"]["flexibility"])
         for r in solver_rows
     ]
-    print(_table(srows, ["solver", "unknowns", "factor_s", "flexibility_s", "wall_s", "friction_error"]))
+    print(table(srows, ["solver", "unknowns", "factor_s", "flexibility_s", "wall_s", "friction_error"]))
     print("\nindentation vs Lee-Radok (SLS, creep time 1 s)")
     print(
-        _table(
+        table(
             ind,
             [
                 "resolution",

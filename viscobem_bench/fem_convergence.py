@@ -27,8 +27,8 @@ import time
 
 import numpy as np
 
-from viscobem_bench._measure import bench_main, run_in_fresh_process, thread_environment, write_record
-from viscobem_bench.fem import _rolling_case, _sls, _table
+from viscobem_bench.fem import rolling_case, standard_solid, table
+from viscobem_bench.instruments import bench_main, run_in_fresh_process, thread_environment, write_record
 
 __all__ = ["observed_orders", "run", "main"]
 
@@ -91,13 +91,13 @@ def run(quick: bool = True, out_dir=".") -> dict:
     def fresh(func, *args):
         return run_in_fresh_process(func, *args, env=env)
 
-    m = _sls()
+    m = standard_solid()
     resolutions = [1, 2] if quick else [2, 3, 4, 6, 8]
-    mesh = [fresh(_rolling_case, m, 1.0, n, 300) for n in resolutions]
+    mesh = [fresh(rolling_case, m, 1.0, n, 300) for n in resolutions]
     for key in ("friction_error", "dissipation_friction_error", "peak_pressure_error", "leading_edge_error_over_a0"):
         _add_orders(mesh, [1.0 / n for n in resolutions], key, "order_" + key[: -len("_error")])
     domains = [5, 10] if quick else [5, 10, 20, 40, 100]
-    domain = [fresh(_rolling_case, m, 10.0, 2 if quick else 4, d) for d in domains]
+    domain = [fresh(rolling_case, m, 10.0, 2 if quick else 4, d) for d in domains]
     for row in domain:  # truncation error: against the largest block (the mesh error is common)
         row["truncation_error"] = row["friction"] / domain[-1]["friction"] - 1
     _add_orders(domain[:-1], [1.0 / d for d in domains[:-1]], "truncation_error", "order")
@@ -108,12 +108,12 @@ def run(quick: bool = True, out_dir=".") -> dict:
     print("mesh size: rolling SLS (E_inf/E0 = 3) at V lambda = a0 against Hunter, L = 300 a0; h = a_inf / resolution")
     cols = ["resolution", "unknowns", "friction_error", "order_friction", "dissipation_friction_error"]
     cols += ["order_dissipation_friction", "peak_pressure_error", "leading_edge_error_over_a0", "wall_s"]
-    print(_table(mesh, cols))
+    print(table(mesh, cols))
     print(f"\ndomain size: same at V lambda = 10 a0, resolution {domain[0]['resolution']}; L in retardation lengths;")
     print("truncation error of the friction against the largest block, order in 1/L")
-    print(_table(domain, ["domain_over_ell_r", "friction_error", "truncation_error", "order", "wall_s"]))
+    print(table(domain, ["domain_over_ell_r", "friction_error", "truncation_error", "order", "wall_s"]))
     print("\ntime step: creep indentation, approach at t = 0.3, 1, 3 lambda; against the finest run, order in 1/steps")
-    print(_table(tstep, ["steps_per_decade", "steps", "self_error", "order", "lee_radok_error_max", "wall_s"]))
+    print(table(tstep, ["steps_per_decade", "steps", "self_error", "order", "lee_radok_error_max", "wall_s"]))
     result = {"quick": quick, "mesh": mesh, "domain": domain, "time_step": tstep}
     write_record(out_dir, "fem_convergence.json", result)
     return result

@@ -5,7 +5,7 @@ lambda = 0.01 s, nu = 0.5; R = 10 mm), at speeds ``V lambda = f a0`` with ``f = 
 and ``a0`` the relaxed (E0) Hertz half-width / radius:
 
 - ``cylinder``: rolling cylinder, P = 1000 N/m, domain 3 a0 wide; reference: Hunter's exact
-  solution (:func:`validation.hunter.rolling_cylinder`).
+  solution (:func:`validation.references.hunter.rolling_cylinder`).
 - ``sphere``: sliding sphere, P = 1 N, domain (3 a0)^2; reference: Richardson extrapolation
   of the uniform solver's friction and peak pressure from its three finest grids (ratio 2;
   the observed order is fitted from the three and recorded; if it falls outside [0.5, 4]
@@ -16,10 +16,10 @@ and ``a0`` the relaxed (E0) Hertz half-width / radius:
   favours coarse far elements.
 
 Solvers: ``bem.solve(..., periodic=False, method="uniform")`` over a range of grids, and
-``bem.adaptive.solve_adaptive`` over fine grids and refinement levels (coarse mesh of 32
+``bem.halfspace.adaptive.solve_adaptive`` over fine grids and refinement levels (coarse mesh of 32
 strips, or 8 x 8 squares). Error = max(|friction/ref - 1|, |peak pressure/ref - 1|), with
 ``friction`` the dissipation form of each solver. Each case runs in a fresh interpreter with
-BLAS threads pinned to 1 (:mod:`viscobem_bench._measure`); wall time is that of the solve call
+BLAS threads pinned to 1 (:mod:`viscobem_bench.instruments`); wall time is that of the solve call
 (kernel construction included, imports excluded); memory is the child's peak RSS.
 
 Outputs: ``DIR/isolated_benchmark.json`` (all cases, Pareto fronts, the fastest method per
@@ -40,7 +40,7 @@ import time
 
 import numpy as np
 
-from viscobem_bench._measure import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
+from viscobem_bench.instruments import load_average, peak_rss, run_in_fresh_process, source_snapshot, thread_environment
 
 RADIUS = 0.01
 LOADS = {"cylinder": 1000.0, "sphere": 1.0, "sphere-wide": 1.0, "sphere-xwide": 1.0}
@@ -50,27 +50,27 @@ DOMAIN = {"cylinder": 3.0, "sphere": 3.0, "sphere-wide": 12.0, "sphere-xwide": 2
 TOLERANCES = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5)
 
 
-def _material():
+def seed_material():
     from bem import Material
 
     return Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)
 
 
-def _a0(problem, material):
-    from validation.hertz import line_contact, point_contact
+def contact_half_width(problem, material):
+    from validation.references.hertz import line_contact, point_contact
 
     contact = line_contact if problem == "cylinder" else point_contact
     return contact(material.E0, material.nu, RADIUS, LOADS[problem]).a
 
 
-def _case(problem, factor, method, n, levels):
+def run_case(problem, factor, method, n, levels):
     """One solve in this (fresh) process; returns its numbers."""
     import bem
     from bem import surfaces
-    from bem.adaptive import solve_adaptive
+    from bem.halfspace.adaptive import solve_adaptive
 
-    m = _material()
-    a0 = _a0(problem, m)
+    m = seed_material()
+    a0 = contact_half_width(problem, m)
     make = surfaces.cylinder if problem == "cylinder" else surfaces.sphere
     s = make(radius=RADIUS, n=n, length=DOMAIN[problem] * a0)
     speed = factor * a0 / m.creep_times[0]
@@ -205,19 +205,19 @@ def _measure_all(problems, quick, env):
             uni, ada = _sizes(problem, quick)
             for factor in SPEEDS[problem]:
                 for n in uni:
-                    rows.append(run_in_fresh_process(_case, problem, factor, "uniform", n, 0, env=env))
+                    rows.append(run_in_fresh_process(run_case, problem, factor, "uniform", n, 0, env=env))
                 for n, levels in ada:
-                    rows.append(run_in_fresh_process(_case, problem, factor, "adaptive", n, levels, env=env))
+                    rows.append(run_in_fresh_process(run_case, problem, factor, "adaptive", n, levels, env=env))
                 print(f"  {problem} f={factor}: {len(uni) + len(ada)} cases done", flush=True)
     return rows, snapshot
 
 
 def _reference(problem, factor, sel, m):
     """Hunter's exact solution for the cylinder, else Richardson extrapolation of the uniform grids."""
-    from validation.hunter import rolling_cylinder
+    from validation.references.hunter import rolling_cylinder
 
     if problem == "cylinder":
-        a0 = _a0(problem, m)
+        a0 = contact_half_width(problem, m)
         ex = rolling_cylinder(m, radius=RADIUS, load=LOADS[problem], speed=factor * a0 / m.creep_times[0])
         return {"kind": "Hunter (exact)", "friction": ex.friction, "peak_pressure": ex.peak_pressure}
     uni = [r for r in sel if r["method"] == "uniform"]
@@ -312,7 +312,7 @@ def run(quick: bool = True, out_dir=".", only=None) -> dict:
     problems = list(SPEEDS) if not only else [p for p in SPEEDS if p in only]
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    m = _material()
+    m = seed_material()
     rows, snapshot = _measure_all(problems, quick, thread_environment(1))
     references, groups = _errors(problems, rows, m)
     choice, same_grid = _compare(groups)

@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from bem import Material
-from bem.temperature import WLF
+from bem.materials.temperature import WLF
 
 TREF = 296.15
 LAW = WLF(8.86, 101.6, TREF)

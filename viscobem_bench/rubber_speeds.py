@@ -23,8 +23,8 @@ import numpy as np
 
 import bem
 from bem.sliding import operator_for
-from viscobem_bench.periodic_problem import LENGTH, TARGET_CONTACT, load_for_contact, materials, surface_heights
-from viscobem_bench.periodic_report import publish, table
+from viscobem_bench.periodic.problem import LENGTH, TARGET_CONTACT, load_for_contact, materials, surface_heights
+from viscobem_bench.periodic.report import publish, table
 
 XIS = (1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4)
 SIZES, QUICK_SIZES, QUICK_XIS = (256, 512), (64, 128), (1e-4, 1e-2, 1e4)

@@ -10,7 +10,7 @@ import os
 
 import numpy as np
 
-from viscobem_bench import _measure
+from viscobem_bench import instruments
 from viscobem_bench.cases import E_ELASTIC, L, elastic, rough_heights, rough_load
 
 
@@ -22,11 +22,11 @@ def _scaling_worker(spec):
     surface = bem.surfaces.from_heights(np.load(spec["heights"]), L)
     m = bem.Material.elastic(E_ELASTIC)
     res = bem.solve(surface, m, speed=0.0, load=rough_load(m), rtol=1e-8)
-    peak = _measure.peak_rss()
+    peak = instruments.peak_rss()
     np.save(spec["reference"], res.pressure)
     op = operator_for(surface, m, 0.0)
     p = res.pressure.copy()
-    pair, _, _ = _measure.median_time(lambda: op.displacement(p), budget=0.5)
+    pair, _, _ = instruments.median_time(lambda: op.displacement(p), budget=0.5)
     return {
         "n": surface.n,
         "time": res.wall_time,
@@ -50,7 +50,7 @@ def _fit_exponent(n, t):
 
 
 def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
-    from viscobem_bench.periodic_workers import tamaas_worker
+    from viscobem_bench.periodic.workers import tamaas_worker
 
     try:
         import tamaas
@@ -66,10 +66,10 @@ def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
         hpath, rpath = str(tmp / f"scaling_h_{n}.npy"), str(tmp / f"scaling_p_{n}.npy")
         np.save(hpath, rough_heights(n))
         try:
-            row = _measure.run_in_fresh_process(
+            row = instruments.run_in_fresh_process(
                 _scaling_worker,
                 {"heights": hpath, "reference": rpath},
-                env=_measure.thread_environment(1),
+                env=instruments.thread_environment(1),
                 timeout=max_seconds,
             )
         except Exception as err:  # a timeout or crash at one size must not lose the others
@@ -79,8 +79,8 @@ def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
         if tamaas_version:
             spec = {"heights": hpath, "load": rough_load(elastic()), "tol": 1e-9, "reference": rpath}
             try:
-                tam = _measure.run_in_fresh_process(
-                    tamaas_worker, spec, timeout=max_seconds, env=_measure.thread_environment(1, omp_threads=cores)
+                tam = instruments.run_in_fresh_process(
+                    tamaas_worker, spec, timeout=max_seconds, env=instruments.thread_environment(1, omp_threads=cores)
                 )
                 row.update(
                     tamaas_time=tam["wall_time"],

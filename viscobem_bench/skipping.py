@@ -13,14 +13,14 @@ from pathlib import Path
 
 import numpy as np
 
-from viscobem_bench import _measure
+from viscobem_bench import instruments
 from viscobem_bench.cases import L, rough_heights, rough_load, seed_material, timed
 
 
 def _skip_worker(spec):
     import bem
     from bem import sliding
-    from bem.periodic import PeriodicHalfSpace
+    from bem.halfspace.periodic import PeriodicHalfSpace
 
     n = spec["n"]
     out = {}
@@ -36,7 +36,7 @@ def _skip_worker(spec):
     folded = rubber.folded(w_min, w_max)
     load = rough_load(rubber) * 3
     for name, m in (("full", rubber), ("folded", folded)):
-        build, _, _ = _measure.median_time(
+        build, _, _ = instruments.median_time(
             lambda m=m: PeriodicHalfSpace(surface.shape, L, m, speed), min_repeats=3, max_repeats=10, budget=1.0
         )
         sliding.clear_operator_cache()
@@ -67,7 +67,7 @@ def _skip_worker(spec):
     for _ in range(2):  # interleaved repeats: the machine's load drifts
         for cached in (False, True):
             times[cached].append(timed(lambda cached=cached: load_sweep(cached))[1])
-    build, _, _ = _measure.median_time(
+    build, _, _ = instruments.median_time(
         lambda: PeriodicHalfSpace(surface.shape, L, rubber, speed), min_repeats=3, max_repeats=10, budget=0.5
     )
     out["reuse_operator"] = {
@@ -110,11 +110,11 @@ def run_skip(quick, tmp, echo=print, study=None):
     """Folding, operator reuse and warm starts; with ``study = (run, template)`` (a module-level
     ``run(scene_text, out_dir) -> record`` and a scene's text) also the outputs' stages."""
     n = 128 if quick else 256
-    env = _measure.thread_environment(1)
-    res = _measure.run_in_fresh_process(_skip_worker, {"n": n}, env=env)
+    env = instruments.thread_environment(1)
+    res = instruments.run_in_fresh_process(_skip_worker, {"n": n}, env=env)
     if study is not None:
         spec = {"n": n, "tmp": str(tmp), "study": study[0], "template": study[1]}
-        res["outputs"] = _measure.run_in_fresh_process(_outputs_worker, spec, env=env)
+        res["outputs"] = instruments.run_in_fresh_process(_outputs_worker, spec, env=env)
     res["n"] = n
     f, r, w = res["fold_full"], res["reuse_operator"], res["warm_start"]
     echo(

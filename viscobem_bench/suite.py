@@ -7,7 +7,7 @@ and nothing outside ``DIR`` (the documentation's benchmark page is generated fro
 ``bench.json``).
 
 What is measured (SI units; every group of points runs in a fresh interpreter with BLAS
-pinned to one thread and FFTs on all cores, see :mod:`viscobem_bench._measure`):
+pinned to one thread and FFTs on all cores, see :mod:`viscobem_bench.instruments`):
 
 1. **Solvers** (the registry of :mod:`viscobem_bench.cases`; adding a solver takes one
    function and a decorator): each entry sweeps its resolution and tolerance knobs and
@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from viscobem_bench import _measure
+from viscobem_bench import instruments
 from viscobem_bench.cases import FINISH, REGISTRY
 from viscobem_bench.report import markdown, pareto_front, plots
 from viscobem_bench.scaling import run_scaling
@@ -63,7 +63,7 @@ def run(quick=False, out_dir="bench-out", *, solvers=None, scaling=True, skip=Tr
             "python": platform.python_version(),
             "numpy": np.__version__,
             "scipy": scipy.__version__,
-            "load_average": _measure.load_average(),
+            "load_average": instruments.load_average(),
         },
         "solvers": {},
         "scaling": {"rows": []},
@@ -71,7 +71,7 @@ def run(quick=False, out_dir="bench-out", *, solvers=None, scaling=True, skip=Tr
     }
     with (
         tempfile.TemporaryDirectory(prefix="viscobem-bench-") as tmp,
-        _measure.source_snapshot(bem, Path(tmp) / "src") as code,
+        instruments.source_snapshot(bem, Path(tmp) / "src") as code,
     ):
         result["code"] = code
         tmp = Path(tmp)
@@ -82,7 +82,7 @@ def run(quick=False, out_dir="bench-out", *, solvers=None, scaling=True, skip=Tr
             points = []
             for group in entry.groups(quick):
                 try:
-                    got = _measure.run_in_fresh_process(entry.measure, group, quick, env=entry.env, timeout=1800)
+                    got = instruments.run_in_fresh_process(entry.measure, group, quick, env=entry.env, timeout=1800)
                 except Exception as err:  # one failing group must not lose the others
                     result["notes"].append(f"{name} {group}: {type(err).__name__}: {err}")
                     echo("  " + result["notes"][-1])

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from bem.errors import InputError
 
-SCENE_DIR = Path(__file__).with_name("scenes")
+SCENE_DIR = Path(__file__).with_name("builtin_scenes")
 DEFAULT_NAME = "seed"
 
 # optional dependency (top-level module) -> (pip extra, what needs it)

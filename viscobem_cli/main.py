@@ -28,7 +28,7 @@ from .catalog import builtin_scenes, install_hint, require, scene_path
 
 def _cmd_run(args):
     from . import scene as scenes
-    from .study import run_scene
+    from .run.study import run_scene
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers must be an integer >= 1, got {args.workers}")
@@ -52,7 +52,7 @@ def _cmd_run(args):
     if record["resumed_points"]:
         print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
     if "temperature_sweep" in record:  # a sweep per temperature: the table of mu(v, T) first
-        from .temperatures import summary
+        from .run.temperatures import summary
 
         print(summary(record))
         print(f"  at {record['friction_curve_temperature']:g} K:")
@@ -91,7 +91,7 @@ def _cmd_scene(args):
 def run_scene_text(text, out):
     """Run the study of a scene given as TOML text into ``out``; its record (for the benchmarks)."""
     from . import scene as scenes
-    from .study import run_scene
+    from .run.study import run_scene
 
     return run_scene(scenes.parse(text), out, progress=False)
 
@@ -100,9 +100,9 @@ def _cmd_bench(args):
     import importlib
 
     if args.name == "import":
-        from . import import_bench
+        from viscobem_bench import imports
 
-        import_bench.run(out_dir=args.out, repeats=1 if args.quick else 7)
+        imports.run(out_dir=args.out, repeats=1 if args.quick else 7)
         return 0
     if args.name != "all":
         module = importlib.import_module(f"viscobem_bench.{args.name}")

@@ -16,8 +16,8 @@ import numpy as np
 
 from bem import Material
 from validation import metrics
-from validation.hunter import low_speed_friction
-from validation.hunter import rolling_cylinder as hunter
+from validation.references.hunter import low_speed_friction
+from validation.references.hunter import rolling_cylinder as hunter
 
 from .base import Case, CaseOutput, Profile, Sweep
 from .cylinder_settings import FULL_PRONY, FULL_SLS, QUICK_PRONY, QUICK_SLS

@@ -2,7 +2,7 @@
 rough contact against a dense direct solve.
 
 Solver: ``bem-periodic`` (:func:`bem.solve`). References: ``exact`` (Fourier full-contact
-solution and Westergaard, :mod:`validation.periodic_exact`, :mod:`validation.westergaard`)
+solution and Westergaard, :mod:`validation.references.periodic_exact`, :mod:`validation.references.westergaard`)
 and ``dense`` (explicit influence matrix and Murty's principal pivoting).
 """
 
@@ -13,8 +13,8 @@ import numpy as np
 import bem
 from bem import surfaces
 from validation import metrics
-from validation.periodic_exact import dense_contact, full_contact
-from validation.westergaard import westergaard
+from validation.references.periodic_exact import dense_contact, full_contact
+from validation.references.westergaard import westergaard
 
 from .base import Case, CaseOutput, Profile, Sweep
 from .cylinder import sls

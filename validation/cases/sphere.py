@@ -16,9 +16,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from validation import lee_radok, metrics
-from validation.hertz import point_contact
-from validation.hunter import low_speed_friction
+from validation import metrics
+from validation.references import lee_radok
+from validation.references.hertz import point_contact
+from validation.references.hunter import low_speed_friction
 
 from .base import Case, CaseOutput, Profile, Sweep
 from .cylinder import sls
@@ -210,7 +211,7 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
 
 def run_creep(*, quick, vtk_dir, root, tamper):
     """Step load on the sphere: contact radius, approach, peak pressure and the final pressure
-    profile against Lee & Radok (:mod:`validation.lee_radok`)."""
+    profile against Lee & Radok (:mod:`validation.references.lee_radok`)."""
     material = sls(3)
     cfg = QUICK_CREEP if quick else FULL_CREEP
     lam = float(material.creep_times[0])

@@ -1,0 +1,64 @@
+"""A sweep over sliding directions: the study once per direction of the scene, each in its own
+folder, and the gathered record (the scene key is described in :mod:`viscobem_cli.scene.directions`)."""
+
+import dataclasses
+import json
+import math
+import time
+from pathlib import Path
+
+from ..files import write_atomic
+from ..plots.directions import polar_plot
+
+__all__ = ["folder_name", "gather", "run_sweep"]
+
+
+def folder_name(theta):
+    """Sub-folder of one direction of a sweep."""
+    return f"direction_{math.degrees(theta):07.3f}".replace("-", "m")
+
+
+def run_sweep(run_scene, scene, out_dir, **options):
+    """``run_scene`` once per direction of ``scene`` (each in its folder); the gathered record.
+
+    The top-level ``results.json`` is the first direction's record plus ``directions``; it is
+    rewritten after each direction, so an interrupted sweep keeps the directions it finished.
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    records = []
+    record = None
+    for theta in scene.directions:
+        one = dataclasses.replace(scene, directions=(theta,))
+        records.append(run_scene(one, out / folder_name(theta), **options))
+        record = dict(records[0])
+        record["directions"] = gather(scene, records)
+        write_atomic(out / "results.json", json.dumps(record, indent=1))
+    record["all_converged"] = all(r["all_converged"] for r in records)
+    record["resumed_points"] = sum(r["resumed_points"] for r in records)
+    files = ["results.json"] + [f"{folder_name(t)}/{f}" for t, r in zip(scene.directions, records) for f in r["files"]]
+    if scene.outputs.get("plots"):
+        polar_plot(record["directions"], out / "friction_polar.png")
+        files.append("friction_polar.png")
+    record["files"] = files
+    record["stages"] = dict(record["stages"], total=time.perf_counter() - t0)
+    write_atomic(out / "results.json", json.dumps(record, indent=1))
+    return record
+
+
+def gather(scene, records):
+    """mu(theta) per speed (first load; ensemble means), degrees and radians, from the records."""
+    keys = ("friction", "friction_eq6", "contact_fraction")
+    table = {k: [r["friction_curve"][k] for r in records] for k in keys}
+    thetas = scene.directions[: len(records)]
+    return {
+        "direction_deg": [round(math.degrees(t), 9) for t in thetas],
+        "direction_rad": list(thetas),
+        "speed": records[0]["friction_curve"]["speed"],
+        "xi": records[0]["friction_curve"]["xi"],
+        "load": records[0]["friction_curve"]["load"],
+        **table,
+        "folders": [folder_name(t) for t in thetas],
+        "note": "rows per direction, columns per speed; friction opposes the motion along each direction",
+    }

@@ -1,0 +1,105 @@
+"""Friction against speed and temperature: the study once per temperature of the scene, and the
+combined record (the scene keys are described in :mod:`viscobem_cli.scene.temperatures`)."""
+
+import dataclasses
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from bem.materials.master_curve import MasterCurveReport
+
+from ..files import write_atomic
+from ..plots.temperatures import plot_master_curve, plot_temperature_sweep
+
+
+def folder_name(T):
+    return f"T_{T:.2f}K"
+
+
+def run(scene, out_dir, run_scene, *, progress=True, scheduler=None, workers=None):
+    """The speed sweep at every temperature of ``scene``, each by ``run_scene`` (the study of one
+    temperature, :func:`viscobem_cli.run.study.run_scene`); the combined record (also written)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    started = time.perf_counter()
+    records = []
+    for T in scene.temperatures:
+        sub = dataclasses.replace(scene, material=scene.material.at_temperature(T, scene.shift), temperatures=())
+        records.append(run_scene(sub, out / folder_name(T), progress=progress, scheduler=scheduler, workers=workers))
+    law = scene.shift
+    table = {
+        "temperature": list(scene.temperatures),
+        "units": {"temperature": "K", "speed": "m/s"},
+        "shift": {"law": type(law).__name__, **vars(law)},
+        "log10_shift_factor": [float(law(T)) for T in scene.temperatures],
+        "folders": [folder_name(T) for T in scene.temperatures],
+        "loads": [],
+    }
+    for k, load in enumerate(scene.loads):
+        curves = [r["curves"][k] for r in records]
+        table["loads"].append(
+            {
+                "load": load,
+                "speed": curves[0]["speed"],
+                "friction": [c["friction"] for c in curves],
+                "contact_fraction": [c["contact_fraction"] for c in curves],
+            }
+        )
+    nearest = int(np.argmin(np.abs(np.array(scene.temperatures) - law.reference_temperature)))
+    record = {
+        key: records[nearest][key]
+        for key in (
+            "title",
+            "scene",
+            "material",
+            "surface",
+            "units",
+            "conventions",
+            "solver",
+            "outputs",
+            "friction_curve",
+            "curves",
+        )
+    }
+    extra = [
+        f"at {T:g} K: {w}" for T, r in zip(scene.temperatures, records) for w in r["warnings"][len(scene.warnings) :]
+    ]
+    record.update(
+        temperature_sweep=table,
+        friction_curve_temperature=scene.temperatures[nearest],
+        warnings=list(scene.warnings) + extra,
+        resumed_points=sum(r["resumed_points"] for r in records),
+        all_converged=all(r["all_converged"] for r in records),
+        complete=True,
+        stages={"total": time.perf_counter() - started},
+    )
+    files = [f"{folder_name(T)}/{name}" for T, r in zip(scene.temperatures, records) for name in r["files"]]
+    if scene.outputs.get("plots"):
+        files += plot_temperature_sweep(table, out)
+    files += write_master_curve(scene, out)
+    record["files"] = ["results.json"] + files
+    write_atomic(out / "results.json", json.dumps(record, indent=1))
+    return record
+
+
+def summary(record):
+    """Text table of the friction coefficient per speed (rows) and temperature (columns)."""
+    table = record["temperature_sweep"]
+    lines = []
+    for sweep in table["loads"]:
+        lines.append(f"  friction coefficient at load {sweep['load']:g} (N; N/m for profiles), by temperature (K):")
+        lines.append("  " + f"{'speed (m/s)':>12}" + "".join(f"{T:>10.2f}" for T in table["temperature"]))
+        for i, v in enumerate(sweep["speed"]):
+            cells = [sweep["friction"][k][i] for k in range(len(table["temperature"]))]
+            lines.append("  " + f"{v:12.4e}" + "".join(f"{'failed':>10}" if c is None else f"{c:10.5f}" for c in cells))
+    return "\n".join(lines)
+
+
+def write_master_curve(scene, out):
+    """``master_curve.png`` when the material was fitted to DMA sweeps at several temperatures."""
+    report = scene.material.fit_report
+    if not (isinstance(report, MasterCurveReport) and scene.outputs.get("plots") and scene.dma is not None):
+        return []
+    return [plot_master_curve(scene.dma, scene.material, report.law, Path(out) / "master_curve.png")]
