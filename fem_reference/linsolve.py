@@ -19,6 +19,10 @@ __all__ = ["factorize", "SOLVERS", "relative_residual", "residual_limit", "solve
 
 RESIDUAL_LIMIT = 1e-8  # largest accepted relative residual of a linear solve (see residual_limit)
 FLOOR_FACTOR = 10.0  # a solve may sit this far above the round-off floor of its force balance
+# iterative refinement stops once a step fails to halve the residual: it contracts by cond * eps per
+# step while it works, and at the floor set by the conditioning it only fluctuates (each step costs a
+# solve with every right-hand side: the flexibility's hundreds of columns)
+STALL = 0.5
 
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
@@ -151,8 +155,9 @@ def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
     """``x`` with ``factor.solve`` plus up to ``steps`` of iterative refinement.
 
     Refinement stops once the relative residual (:func:`relative_residual`, with
-    ``n_equilibrium`` force-balance rows) is below ``target``; near the floor set by the
-    conditioning it fluctuates, so the best iterate is kept. Returns ``(x, residual, limit)``:
+    ``n_equilibrium`` force-balance rows) is below ``target``, or once a step fails to halve it
+    (:data:`STALL`: near the floor set by the conditioning it only fluctuates); the best iterate
+    is kept. Returns ``(x, residual, limit)``:
     the residual of the returned ``x`` and the largest acceptable one (:func:`residual_limit`;
     :data:`RESIDUAL_LIMIT` without ``n_equilibrium``).
     """
@@ -164,8 +169,11 @@ def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
             break
         x = x + factor.solve(b - (A @ x).reshape(b.shape))
         res = relative_residual(A, x, b, n_equilibrium)
+        stalled = res > STALL * best_res  # at the round-off floor: more steps only fluctuate
         if res < best_res:
             best, best_res = x, res
+        if stalled:
+            break
     limit = RESIDUAL_LIMIT
     if n_equilibrium is not None and best_res > RESIDUAL_LIMIT:  # only then can the floor matter
         limit = residual_limit(A, best, b, n_equilibrium)
