@@ -359,7 +359,7 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         peak_memory=_peak_memory_mib(),
         input_material=given,
         n_nonzeros=int(op.matrix.nnz),
-        factor_nonzeros=int(op.factor.nnz),
+        factor_nonzeros=int(getattr(op.factor, "nnz", -1)),  # -1: a solver that does not report it
         thinnest_layer=layer,
         smallest_element=h_min,
         peak_resolved=not warnings,

@@ -84,7 +84,8 @@ class RollingResult:
     peak_memory : float
         Peak resident memory of the process so far (MiB).
     n_nonzeros, factor_nonzeros : int
-        Entries of the assembled system and of its factors (fill-in included), last mesh.
+        Entries of the assembled system and of its factors (fill-in included; -1 when the solver does
+        not report it), last mesh.
     thinnest_layer : float
         The thinnest leading-edge layer ``V min(tau_k)`` over the terms kept (m; ``inf`` for an
         elastic solid or at rest).
