@@ -105,6 +105,12 @@ class QuadratureOperators:
     def n_points(self):
         return self.weights.size
 
+    @property
+    def cell(self):
+        """Element of each quadrature point (points are stored element by element)."""
+        nel, nqp = self.basis.dx.shape
+        return np.repeat(np.arange(nel), nqp)
+
     def pointwise(self, d):
         """Block-diagonal ``diag(weights) (x) d`` for a small matrix ``d`` (or vector)."""
         d = np.atleast_2d(np.asarray(d, dtype=float))

@@ -16,10 +16,10 @@ satisfy::
     [ -R_k B      0           L_k             ] [alpha_k] [0]
 
 ``K_dev = B^T W D_dev B``, ``G = B^T W m N``, ``M = N^T W N``, ``c = 3 (1 - 2 nu)``,
-``L_k alpha = R_k eps`` the exponential streamline update of
-:mod:`fem_reference.transport`. The system is sparse and not symmetric. A term may
-instead be condensed: ``alpha_k = A_k eps`` with the truncated explicit memory ``A_k`` of
-:mod:`fem_reference.condense`, so that ``B`` becomes ``B_v = (I - sum_k g_k A_k) B`` in the
+``L_k alpha = R_k eps`` the element-wise streamline memory of
+:mod:`fem_reference.memory`. The system is sparse and not symmetric. A term may
+instead be condensed: ``alpha_k = A_k eps`` with the truncated explicit memory ``A_k``
+(:func:`fem_reference.memory.condensed_memory`), so that ``B`` becomes ``B_v = (I - sum_k g_k A_k) B`` in the
 first two block rows and the term has no unknowns. That trades unknowns for a band along
 the streamlines of width ``~ 30 V tau_k``: cheap where the elements are long compared
 with ``V tau_k``, and the only affordable form on strongly graded meshes, where the
@@ -38,10 +38,10 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .condense import band_width, condensed_operator
+from .condense import band_width
 from .kinematics import deviatoric_matrix, inverse_bulk_modulus, mixed_blocks, trace_vector
 from .linsolve import RESIDUAL_LIMIT, factorize, solve_refined
-from .transport import streamline_operators
+from .memory import condensed_memory, memory_operators
 
 __all__ = ["SteadyOperator", "steady_operator", "condensable", "viscous_strain"]
 
@@ -112,7 +112,7 @@ class SteadyOperator:
 
 def viscous_strain(ops, ell, eps):
     """``alpha`` (Voigt, point-major) of one term from the strain ``eps`` (exact update)."""
-    Lk, Rk = streamline_operators(ops.row, ops.points[0], ell)
+    Lk, Rk = memory_operators(ops.row, ops.points[0], ell, ops.cell)
     lu = spla.splu(sp.csc_matrix(Lk))
     ncomp = ops.ncomp
     e = eps.reshape((-1, ncomp) + eps.shape[1:])
@@ -168,14 +168,14 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False):
     eye = sp.identity(ncomp, format="csr")
     Bv = Bf
     if np.any(cmask):
-        S = condensed_operator(ops.row, ops.points[0], speed * material.relaxation_times[cmask], g[cmask])
+        S = condensed_memory(ops.row, ops.points[0], speed * material.relaxation_times[cmask], g[cmask], ops.cell)
         Bv = (Bf - sp.kron(S, eye, format="csr") @ Bf).tocsr()
     Kv = (BtWd[free] @ Bv).tocsr()
     Gf = mb.G[free]
     mono = np.flatnonzero(~cmask)
     blocks = [[Kv, -Gf] + [-g[k] * BtWd[free] for k in mono], [-(T @ Bv), -c * M] + [g[k] * T for k in mono]]
     for i, k in enumerate(mono):
-        Lk, Rk = streamline_operators(ops.row, ops.points[0], speed * material.relaxation_times[k])
+        Lk, Rk = memory_operators(ops.row, ops.points[0], speed * material.relaxation_times[k], ops.cell)
         row = [-(sp.kron(Rk, eye) @ Bf), None] + [None] * mono.size
         row[2 + i] = sp.kron(Lk, eye)
         blocks.append(row)
