@@ -130,6 +130,10 @@ def _unsort(M, order):
 def memory_operators(keys, x, ell, cells):
     """Sparse ``L``, ``R`` with ``L alpha = R eps`` (points in the given order).
 
+    Each element's rows are the update solved for its own points, ``alpha_e - c_e r^T
+    alpha_{e-1} = S_e eps_e`` (:func:`element_blocks`), so ``L`` is unit block-lower-bidiagonal in
+    flow order (its diagonal is the identity, as pivots need), and ``R`` block-diagonal.
+
     Parameters
     ----------
     keys : (n,) int array
@@ -143,32 +147,26 @@ def memory_operators(keys, x, ell, cells):
     """
     order, first, length, opens = _elements(keys, x, cells)
     n = order.size
-    K, _, _ = element_blocks(_zeta(length, ell))
-    _, w, _, e_in, r = reference_element()
-    zeta = _zeta(length, ell)
-    finite = np.isfinite(zeta)
-    inv = np.where(finite, 1.0 / (1.0 + np.where(finite, zeta, 0.0)), 0.0)
-    frac = np.where(finite, np.where(finite, zeta, 0.0) * inv, 1.0)
+    _, S, c = element_blocks(_zeta(length, ell))
+    _, _, _, e_in, r = reference_element()
+    # a row's first element takes its own strain at its inflow face as incoming alpha
+    S = S + np.where(opens[:, None, None], c[:, :, None] * e_in[None, None, :], 0.0)
     loc = np.arange(3)
-    blk_r = (first[:, None, None] + loc[None, :, None]) + 0 * loc[None, None, :]
-    blk_c = (first[:, None, None] + loc[None, None, :]) + 0 * loc[None, :, None]
-    rows, cols, vals = [blk_r.ravel()], [blk_c.ravel()], [K.ravel()]
-    # coupling to the upstream element's points: -e_in r^T / (1 + zeta)
+    blk_r = np.broadcast_to(first[:, None, None] + loc[None, :, None], (first.size, 3, 3))
+    blk_c = np.broadcast_to(first[:, None, None] + loc[None, None, :], (first.size, 3, 3))
     up = np.flatnonzero(~opens)
-    cpl = -inv[up, None, None] * np.outer(e_in, r)[None]
-    rows.append(blk_r[up].ravel())
-    cols.append((blk_c[up] - 3).ravel())
-    vals.append(cpl.ravel())
-    L = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
-    # right-hand side: zeta W / (1 + zeta), and the inflow of a row's first element, e_in e_in^T
-    rr = [np.repeat(first, 3) + np.tile(loc, first.size)]
-    rc = [rr[0]]
-    rv = [(frac[:, None] * w[None]).ravel()]
-    op = np.flatnonzero(opens)
-    rr.append(blk_r[op].ravel())
-    rc.append(blk_c[op].ravel())
-    rv.append((inv[op, None, None] * np.outer(e_in, e_in)[None]).ravel())
-    R = sp.coo_matrix((np.concatenate(rv), (np.concatenate(rr), np.concatenate(rc))), shape=(n, n)).tocsr()
+    cpl = -c[up][:, :, None] * r[None, None, :]  # -c_e r^T on the upstream element's points
+    L = sp.coo_matrix(
+        (
+            np.concatenate([np.ones(n), cpl.ravel()]),
+            (
+                np.concatenate([np.arange(n), blk_r[up].ravel()]),
+                np.concatenate([np.arange(n), (blk_c[up] - 3).ravel()]),
+            ),
+        ),
+        shape=(n, n),
+    ).tocsr()
+    R = sp.coo_matrix((S.ravel(), (blk_r.ravel(), blk_c.ravel())), shape=(n, n)).tocsr()
     return _unsort(L, order), _unsort(R, order)
 
 
