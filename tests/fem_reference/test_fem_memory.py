@@ -32,7 +32,8 @@ def stiff_error(h, ell=1e-3, two_point=False):
     d1, d2 = -2 * x * eps, (4 * x**2 - 2) * eps
     exact = -ell * d1 - ell**2 * d2
     alpha = integrate_line(x, eps, ell) if two_point else memory(x, cells, eps, ell)
-    return np.max(np.abs(eps - alpha - exact)) / np.max(np.abs(exact))
+    inner = slice(6, None)  # beyond the relaxed first element of the row and the one it feeds
+    return np.max(np.abs((eps - alpha - exact)[inner])) / np.max(np.abs(exact))
 
 
 def test_stiff_arm_strain_second_order():
@@ -52,10 +53,11 @@ def test_limits_and_constant_strain():
     keys = np.zeros(x.size, dtype=int)
     eps = np.sin(x)
     np.testing.assert_allclose(memory(x, cells, eps, 0.0), eps, rtol=0, atol=1e-14)  # relaxed
-    # glassy: the inflow value is carried unchanged down the row (the first element's own
-    # strain at its inflow face)
-    _, _, _, e_in, _ = reference_element()
-    np.testing.assert_allclose(memory(x, cells, eps, np.inf), e_in @ eps[:3], rtol=0, atol=1e-14)
+    # glassy: the first element is relaxed and its strain at its outflow face is carried unchanged
+    _, _, _, _, r = reference_element()
+    alpha = memory(x, cells, eps, np.inf)
+    np.testing.assert_allclose(alpha[:3], eps[:3], rtol=0, atol=1e-14)
+    np.testing.assert_allclose(alpha[3:], r @ eps[:3], rtol=0, atol=1e-14)
     for ell in (1e-4, 0.3, 30.0):
         np.testing.assert_allclose(memory(x, cells, np.ones(x.size), ell), 1.0, rtol=0, atol=1e-13)
         S = condensed_memory(keys, x, [ell], [1.0], cells)
@@ -117,7 +119,8 @@ def test_monolithic_and_condensed_solves_agree(ell):
     f[top.ydofs[np.abs(top.x) <= 0.1]] = -1.0
     sols = []
     for condense in (False, True):
-        op = steady_operator(ops, m, ell, condense=condense)  # V = ell with tau = 1 s
+        # SuperLU: PARDISO's pivot perturbation is not reliable on these systems (rolling falls back)
+        op = steady_operator(ops, m, ell, condense=condense, solver="splu")  # V = ell with tau = 1 s
         u, _, _ = op.solve(f)
         assert op.residual < 1e-9
         sols.append(u)
