@@ -15,6 +15,10 @@ Cases (all SI; R = 10 mm):
   BEM's friction peak and a decade below, against the BEM on 2^14 points (friction,
   peak pressure, edges over the contact width), with unknowns, assemble / factor /
   flexibility / contact times, linear residual and peak memory.
+- ``high_ratio``: a standard linear solid with E_inf/E0 = 1000 (E0 = 2 MPa, relaxation time
+  10 ms, nu = 0.5, R = 20 mm, P = 500 N/m) at Hunter's friction peak on the graded mesh, against
+  Hunter's exact solution: friction (both forms), peak pressure and edges over the resolution,
+  the grading ratio and the block size, with unknowns, CPU time and peak memory.
 
 Each case runs in a fresh interpreter (:func:`viscobem_bench.instruments.run_in_fresh_process`)
 with BLAS/MKL threads pinned to 2, so its peak resident set size is its own.
@@ -219,6 +223,96 @@ def rubber_rows(quick=True, fresh=None):
     return rows
 
 
+def high_ratio_peak_speed(ratio=1000.0):
+    """Hunter's friction peak speed (m/s) of the ``high_ratio`` solid."""
+    import scipy.optimize as so
+
+    from validation.references import hunter
+
+    m, R, P = _high_ratio_material(ratio), 0.02, 500.0
+    res = so.minimize_scalar(
+        lambda lv: -hunter.rolling_cylinder(m, radius=R, load=P, speed=10**lv).friction,
+        bounds=(-7.0, 1.0),
+        method="bounded",
+        options={"xatol": 1e-4},
+    )
+    return float(10**res.x)
+
+
+def _high_ratio_material(ratio):
+    from bem import Material
+
+    return Material.standard_linear_solid(E0=2e6, E_inf=2e6 * ratio, relaxation_time=0.01, nu=0.5)
+
+
+def high_ratio_case(ratio, speed, resolution, grading, domain_factor=None):
+    """One graded-mesh FEM run of the ``high_ratio`` solid against Hunter; ``domain_factor`` scales
+    the default block (``None``: the default)."""
+    from fem_reference import domain_size, rolling_cylinder
+    from validation.references import hunter
+
+    m, R, P = _high_ratio_material(ratio), 0.02, 500.0
+    L = domain_size(m, R, P, speed)
+    domain = None if domain_factor is None else domain_factor * L
+    t0, c0 = time.perf_counter(), time.process_time()
+    r = rolling_cylinder(
+        m, radius=R, load=P, speed=speed, mesh="graded", resolution=resolution, grading=grading, domain=domain
+    )
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    h = hunter.rolling_cylinder(m, radius=R, load=P, speed=speed)
+    width = 2 * h.half_width
+    return {
+        "ratio": ratio,
+        "speed": speed,
+        "resolution": resolution,
+        "grading": grading,
+        "domain_factor": 1.0 if domain_factor is None else domain_factor,
+        "domain": r.domain_width,
+        "unknowns": r.n_unknowns,
+        "elements": r.n_elements,
+        "passes": r.passes,
+        "friction_error": r.friction / h.friction - 1,
+        "dissipation_friction_error": r.friction_dissipation / h.friction - 1,
+        "peak_pressure_error": r.peak_pressure / h.peak_pressure - 1,
+        "leading_edge_error_over_width": (r.leading_edge - h.leading_edge) / width,
+        "trailing_edge_error_over_width": (r.trailing_edge - h.trailing_edge) / width,
+        "success": r.success,
+        "cpu_s": cpu,
+        "wall_s": wall,
+        "peak_rss_mb": _peak_rss_mb(),
+    }
+
+
+HIGH_RATIO_COLS = [
+    "resolution",
+    "grading",
+    "domain_factor",
+    "unknowns",
+    "passes",
+    "friction_error",
+    "dissipation_friction_error",
+    "peak_pressure_error",
+    "leading_edge_error_over_width",
+    "trailing_edge_error_over_width",
+    "cpu_s",
+    "peak_rss_mb",
+]
+
+
+def high_ratio_rows(quick=True, fresh=None):
+    """The ``high_ratio`` rows at the friction peak: resolution (grading 1.5), grading (resolution 6)
+    and block size (resolution 6, grading 1.5)."""
+    fresh = fresh or (lambda func, *args: func(*args))
+    V = high_ratio_peak_speed()
+    settings = [(3, 1.5, None), (6, 1.5, None)]
+    if not quick:
+        settings += [(12, 1.5, None), (6, 1.3, None), (6, 1.5, 0.5), (6, 1.5, 2.0)]
+    rows = [fresh(high_ratio_case, 1000.0, V, n, g, d) for n, g, d in settings]
+    print(f"\nSLS E_inf/E0 = 1000 at its friction peak (V = {V:.4g} m/s), graded mesh, against Hunter")
+    print(table(rows, HIGH_RATIO_COLS))
+    return rows
+
+
 def table(rows, cols):
     lines = ["  ".join(f"{c:>14s}" for c in cols)]
     for row in rows:
@@ -286,7 +380,15 @@ def run(quick: bool = True, out_dir=".") -> dict:
         )
     )
     rubber = rubber_rows(quick, fresh)
-    result = {"quick": quick, "rolling": rolling, "solvers": srows, "indentation": ind, "rubber": rubber}
+    high = high_ratio_rows(quick, fresh)
+    result = {
+        "quick": quick,
+        "rolling": rolling,
+        "solvers": srows,
+        "indentation": ind,
+        "rubber": rubber,
+        "high_ratio": high,
+    }
     write_record(out_dir, "fem_benchmark.json", result)
     return result
 
