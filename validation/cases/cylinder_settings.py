@@ -319,30 +319,37 @@ QUICK_HIGH_RATIO = dict(
     ),
 )
 # Full: E_inf/E0 = 1000 at the default graded mesh (resolution 6, grading 1.5), at the friction peak
-# (s = 1.7) and ten times it. Measured at s = 1.697 / 16.97: friction, dissipation form 0.69 % / 0.66 %,
-# moment form 0.107 % / 0.048 %; peak pressure 1.14 % / 0.87 %; edges lead 0.11 % / 0.23 %, trail 2.35 % /
-# 0.69 % of the contact width; energy balance 0.80 % / 0.71 %. 208 / 72 s CPU, 1.6 / 2.0 GiB.
+# (s = 1.7) and ten times it. Measured at s = 1.697: friction, dissipation form 0.68 %, moment form 0.115 %,
+# peak pressure 3.5 % (1.14 % on a mesh whose passes stopped a micrometre elsewhere: the nodal peak of the
+# layer V tau = 3.7 um, 2.6 smallest elements, moves with where the layer falls on them), edges lead 0.08 %,
+# trail 2.24 % of the contact width, energy balance 0.80 %; 160 s CPU, 1.6 GiB. At s = 16.97 (passes that
+# settled both edges at a quarter edge element): 0.66 %, 0.048 %, 0.87 %, edges <= 0.69 %, balance 0.71 %;
+# 72 s CPU, 2.0 GiB.
 FULL_HIGH_RATIO = dict(
     ratio=1000.0,
     s=[1.7, 17.0],
     resolution=6,
     tol=dict(
         friction=0.01,
-        friction_moment={1.7: 2e-3, 17.0: 1e-3},
-        peak=0.02,
+        friction_moment={1.7: 2.5e-3, 17.0: 1e-3},
+        peak={1.7: 0.05, 17.0: 0.02},
         edge={1.7: 0.04, 17.0: 0.015},
         balance={1.7: 0.016, 17.0: 0.015},
     ),
     why=dict(
-        friction="dissipation form, measured 0.69 % (s = 1.7) / 0.66 % (s = 17); margin 1.45x",
+        friction="dissipation form, measured 0.68 % (s = 1.7) / 0.66 % (s = 17); margin 1.45x",
         friction_moment={
-            1.7: "moment form, measured 1.07e-3; margin 1.9x",
+            1.7: "moment form, measured 1.15e-3; margin 2.2x",
             17.0: "moment form, measured 4.8e-4; margin 2.1x",
         },
-        peak="measured 1.14 % (s = 1.7) / 0.87 % (s = 17); margin 1.75x",
+        peak={
+            1.7: "measured 3.5 % and 1.14 % on two meshes a micrometre apart (the layer V tau over 2.6 smallest "
+            "elements); margin 1.4x over the larger",
+            17.0: "measured 0.87 %; margin 2.3x",
+        },
         edge={
-            1.7: "measured 2.35 % of the contact width at the trailing edge (36 um, where Hunter's pressure is 1 % "
-            "of its peak), 0.11 % at the leading edge; margin 1.7x",
+            1.7: "measured 2.24-2.35 % of the contact width at the trailing edge (35-36 um, where Hunter's pressure "
+            "is 1 % of its peak), 0.08-0.11 % at the leading edge; margin 1.7x",
             17.0: "measured <= 0.69 % of the contact width; margin 2.2x",
         },
         balance={

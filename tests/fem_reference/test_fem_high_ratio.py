@@ -1,0 +1,34 @@
+"""FEM (graded mesh, default settings) against Hunter's exact solution at E_inf/E0 = 1000.
+
+Standard linear solid E0 = 2 MPa, E_inf = 2 GPa, relaxation time 10 ms, nu = 0.5; R = 20 mm,
+P = 500 N/m, at Hunter's friction peak (V = 3.71e-4 m/s, V lambda / a0 = 1.70). With the
+two-point streamline memory the contact sat 27-36 um downstream and the errors were -2.62 %
+(moment form), -1.70 % (dissipation form), -4.2 % (peak pressure): this test fails there.
+"""
+
+import pytest
+
+from bem import Material
+from fem_reference import rolling_cylinder
+from validation.references.hunter import rolling_cylinder as hunter
+
+R, P, V = 0.02, 500.0, 3.7074e-4
+
+
+@pytest.mark.slow
+def test_fem_against_hunter_at_modulus_ratio_1000():
+    m = Material.standard_linear_solid(E0=2e6, E_inf=2e9, relaxation_time=0.01, nu=0.5)
+    r = rolling_cylinder(m, radius=R, load=P, speed=V, mesh="graded")
+    h = hunter(m, radius=R, load=P, speed=V)
+    assert r.success, r.message
+    # measured (resolution 6, grading 1.5): -0.115 % (moment), +0.68 % (dissipation); limit 1 %:
+    # margin 1.47x over the larger
+    assert abs(r.friction / h.friction - 1) < 0.01
+    assert abs(r.friction_dissipation / h.friction - 1) < 0.01
+    # measured +3.5 % (+1.14 % on a mesh whose passes stopped a micrometre elsewhere: the nodal peak of
+    # the layer V tau = 3.7 um over 2.6 smallest elements); limit 5 %: margin 1.4x over the larger
+    assert abs(r.peak_pressure / h.peak_pressure - 1) < 0.05
+    # leading edge measured 1.3 um = 0.08 % of the contact width (was 27 um = 1.7 %); limit 0.5 %
+    # of the width: margin 6x. The trailing edge (35 um = 2.2 %, where Hunter's pressure is 1 % of
+    # its peak at 36 um from the edge) is located from pressures of that size and is not asserted.
+    assert abs(r.leading_edge - h.leading_edge) < 0.005 * 2 * h.half_width
