@@ -45,6 +45,18 @@ def standard_solid():
     return Material.standard_linear_solid(E0=1e6, E_inf=3e6, relaxation_time=0.01, nu=0.5)
 
 
+def hunter_errors(r, h, length, name):
+    """Relative errors of a rolling result ``r`` against Hunter's ``h``: friction (both forms), peak
+    pressure, and the edges over ``length`` (keys ``*_over_<name>``)."""
+    return {
+        "friction_error": r.friction / h.friction - 1,
+        "dissipation_friction_error": r.friction_dissipation / h.friction - 1,
+        "peak_pressure_error": r.peak_pressure / h.peak_pressure - 1,
+        f"leading_edge_error_over_{name}": (r.leading_edge - h.leading_edge) / length,
+        f"trailing_edge_error_over_{name}": (r.trailing_edge - h.trailing_edge) / length,
+    }
+
+
 def rolling_case(material, ell, resolution, domain_factor, solver="auto", grading=1.3):
     from fem_reference import rolling_cylinder
     from validation.references import hunter
@@ -70,11 +82,7 @@ def rolling_case(material, ell, resolution, domain_factor, solver="auto", gradin
         "elements": r.n_elements,
         "friction": r.friction,
         "friction_hunter": h.friction,
-        "friction_error": r.friction / h.friction - 1,
-        "peak_pressure_error": r.peak_pressure / h.peak_pressure - 1,
-        "dissipation_friction_error": r.friction_dissipation / h.friction - 1,
-        "leading_edge_error_over_a0": (r.leading_edge - h.leading_edge) / a0,
-        "trailing_edge_error_over_a0": (r.trailing_edge - h.trailing_edge) / a0,
+        **hunter_errors(r, h, a0, "a0"),
         "wall_s": wall,
         "timings": r.timings,
         "peak_rss_mb": _peak_rss_mb(),
@@ -271,11 +279,7 @@ def high_ratio_case(ratio, speed, resolution, grading, domain_factor=None):
         "unknowns": r.n_unknowns,
         "elements": r.n_elements,
         "passes": r.passes,
-        "friction_error": r.friction / h.friction - 1,
-        "dissipation_friction_error": r.friction_dissipation / h.friction - 1,
-        "peak_pressure_error": r.peak_pressure / h.peak_pressure - 1,
-        "leading_edge_error_over_width": (r.leading_edge - h.leading_edge) / width,
-        "trailing_edge_error_over_width": (r.trailing_edge - h.trailing_edge) / width,
+        **hunter_errors(r, h, width, "width"),
         "success": r.success,
         "cpu_s": cpu,
         "wall_s": wall,
