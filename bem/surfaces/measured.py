@@ -29,11 +29,11 @@ adds its slope to every contact and to both friction forms.
 
 **The patch.** Solver cells are square; a scan need not be. The solved patch is a square of
 the scan (``patch="centre"``, the largest centred one, by default; or a given origin and side),
-and when it is not the whole scan the surface says so: ``metadata["measured"]["patch"]``
-(origin, side, points, fraction of the scan's area) and a warning. :func:`cover` lists squares
+and the surface says which: ``metadata["measured"]["patch"]`` (origin, side, points, fraction
+of the scan's area), with a warning when the automatic choice is not the whole scan. :func:`cover` lists squares
 that together cover the whole scan, to solve each (the scene's ``patch = "cover"``).
 
-**The boundary** (docs/theory.md §5). A scan is a patch of a larger surface whose
+**The boundary** (docs/theory.md §5.1). A scan is a patch of a larger surface whose
 surroundings carry the same nominal pressure; neither of its edges is special. Chosen by
 measurement (``viscobem bench measured``: patches cut from periodic surfaces whose friction is
 known):
