@@ -19,7 +19,7 @@ EXTRAS = {
     "pyvista": ("vtk", "VTK output ([outputs] vtk = true; viscobem validate without --no-vtk)"),
     "vtk": ("vtk", "VTK output ([outputs] vtk = true; viscobem validate without --no-vtk)"),
     "pypardiso": ("fem", "the FEM reference's PARDISO solver"),
-    "SurfaceTopography": ("topography", "measured topography files"),
+    "SurfaceTopography": ("topography", "reading measured topography files (scene kind measured)"),
     "psutil": ("bench", "the benchmarks' memory measurements"),
 }
 
