@@ -35,8 +35,11 @@ AREA_RANDOM = 0.2
 FRICTION_WEIGHT = {1: 2.0, 2: 1.0}
 FRICTION_ROUGHNESS = 0.5
 # Peak pressure: a share of how far the peak stands above its neighbours (a smooth maximum
-# sampled anywhere within a cell moves by ~1/12 of that; a one-cell spike by more).
+# sampled anywhere within a cell moves by ~1/12 of that), twice that for a peak on the contact's
+# edge, a pressure rising from zero within one cell, whose sampled value follows where the edge
+# falls in the cell (measured median ratio of error to sharpness: 0.15 inside, 0.33 on the edge).
 PEAK_WEIGHT = 0.15
+PEAK_EDGE_WEIGHT = 0.3
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,15 +128,17 @@ def from_indicators(ind, ndim):
 
     ``contact_fraction = (0.06 faces + 0.2 sqrt(faces)) / contact cells``;
     ``friction = w_d m4 / (1 + R / 0.5)`` with ``w_1 = 2``, ``w_2 = 1``, ``m4`` the dissipation
-    moment and ``R`` the interior roughness (0 where nothing dissipates: friction is zero on any
-    grid); ``peak_pressure = 0.15 (p_max - mean of its neighbours) / p_max``.
+    moment and ``R`` the interior roughness (``None`` where nothing dissipates: friction is then
+    zero on every grid and has no relative error); ``peak_pressure = 0.15 (p_max - mean of its
+    neighbours) / p_max``, 0.3 times it for a peak on the contact's edge.
     """
     values, reasons = {}, {}
     cells = ind["contact_cells"]
     if cells:
         faces = ind["contact_edge_faces"]
         values["contact_fraction"] = (AREA_PER_FACE * faces + AREA_RANDOM * faces**0.5) / cells
-        values["peak_pressure"] = PEAK_WEIGHT * ind["peak_sharpness"]
+        weight = PEAK_EDGE_WEIGHT if ind["peak_cells_to_edge"] == 1 else PEAK_WEIGHT
+        values["peak_pressure"] = weight * ind["peak_sharpness"]
     else:
         reasons["contact_fraction"] = reasons["peak_pressure"] = "no contact"
     if ind["dissipation_moment"] is None:

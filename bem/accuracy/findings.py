@@ -73,24 +73,13 @@ def _spots(ind):
     return f"the contact's edges cut {ind['contact_edge_faces'] / ind['contact_cells']:.2g} cell faces per contact cell"
 
 
-def _friction(result, est, ind, n):
-    e = est["friction"]
+def _uncertain(quantity, value, est, detail, n):
+    """The finding that ``quantity`` (of ``value``) has an estimated error above :data:`WARN`."""
+    e = est[quantity]
     return Finding(
-        f"friction = {result.friction:.4g} is uncertain by about {_pct(e)} (estimated discretisation "
-        f"error): {_spots(ind)}, and {_pct(ind['dissipation_moment'])} of the dissipation weighs "
-        f"wavelengths of a few cells. {_refine_advice(e, n)}",
-        "friction",
-        e,
-    )
-
-
-def _area(result, est, ind, n):
-    e = est["contact_fraction"]
-    return Finding(
-        f"contact_fraction = {result.contact_fraction:.4g} is uncertain by about {_pct(e)} (estimated "
-        f"discretisation error): {_spots(ind)}, and a cell on an edge counts whole or not at all "
-        f"(coarse grids overstate the area). {_refine_advice(e, n)}",
-        "contact_fraction",
+        f"{quantity} = {value:.4g} is uncertain by about {_pct(e)} (estimated discretisation error): "
+        f"{detail}. {_refine_advice(e, n)}",
+        quantity,
         e,
     )
 
@@ -150,9 +139,12 @@ def findings_of(result, est, ind, n):
         )
     out = []
     if est["friction"] is not None and est["friction"] > WARN:
-        out.append(_friction(result, est, ind, n))
+        share = _pct(ind["dissipation_moment"])
+        detail = f"{_spots(ind)}, and {share} of the dissipation weighs wavelengths of a few cells"
+        out.append(_uncertain("friction", result.friction, est, detail, n))
     if est["contact_fraction"] is not None and est["contact_fraction"] > WARN:
-        out.append(_area(result, est, ind, n))
+        detail = f"{_spots(ind)}, and a cell on an edge counts whole or not at all (coarse grids overstate the area)"
+        out.append(_uncertain("contact_fraction", result.contact_fraction, est, detail, n))
     if est["peak_pressure"] is not None and est["peak_pressure"] > WARN:
         out.append(_peak(result, est, ind, n))
     gap = ind.get("form_gap", 0.0)
@@ -163,7 +155,8 @@ def findings_of(result, est, ind, n):
         out.append(
             Finding(
                 f"{_pct(edge)} of the load lies on the outermost cells of the isolated domain: the domain "
-                f"cuts the contact short. Enlarge length, with n in proportion to keep the cell size.",
+                f"cuts the contact short. Widen it (an indenter: length, with n in proportion to keep the "
+                f"cell size; a measured patch: a boundary treatment that does not load its edges).",
                 "domain_edge",
                 edge,
             )

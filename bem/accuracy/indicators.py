@@ -218,23 +218,23 @@ def points_per_wavelength(heights):
     """Grid points per shortest wavelength of ``heights`` (any 1-D or square 2-D array).
 
     The shortest wavelength is ``2 pi / q_c`` with ``q_c`` the wavenumber below which 95 % of the
-    curvature spectrum ``|q|**4 |h_q|**2`` lies: for a band-limited self-affine surface ``q_c`` is
-    within a few per cent of its cut-off ``q_1``; for a measured one it is where its curvature
-    lives, often the grid's own Nyquist (2 points). ``inf`` for a plane.
+    curvature spectrum ``|q|**4 |h_q|**2`` lies (binned to whole modes): for a band-limited
+    self-affine surface ``q_c`` is within a few per cent of its cut-off ``q_1``; for a measured
+    one it is where its curvature lives, often the grid's own Nyquist (2 points). ``inf`` for a
+    plane.
     """
     h = np.asarray(heights, dtype=float)
     n = h.shape[0]
-    spectrum = np.abs(np.fft.rfftn(h - h.mean())) ** 2
-    k = [np.fft.fftfreq(n, 1.0 / n)] * (h.ndim - 1) + [np.fft.rfftfreq(n, 1.0 / n)]
-    grids = np.meshgrid(*k, indexing="ij")
-    kk = np.sqrt(sum(g**2 for g in grids))
+    spectrum = np.abs(sfft.rfftn(h - h.mean())) ** 2
+    k = [sfft.fftfreq(n, 1.0 / n)] * (h.ndim - 1) + [sfft.rfftfreq(n, 1.0 / n)]
+    kk = np.sqrt(sum(g**2 for g in np.meshgrid(*k, indexing="ij", sparse=True)))
     weight = spectrum * kk**4
     if not np.any(weight > 0):
         return math.inf
-    order = np.argsort(kk, axis=None)
-    cumulative = np.cumsum(weight.ravel()[order])
-    k_c = kk.ravel()[order][np.searchsorted(cumulative, 0.95 * cumulative[-1])]
-    return float(n / k_c)
+    bins = np.rint(kk).astype(np.int64).ravel()
+    cumulative = np.cumsum(np.bincount(bins, weights=weight.ravel()))
+    k_c = int(np.searchsorted(cumulative, 0.95 * cumulative[-1]))
+    return float(n / max(k_c, 1))
 
 
 def loading_band(surface, speed, *, periodic, direction=0.0):

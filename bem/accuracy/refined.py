@@ -18,7 +18,7 @@ import scipy.fft as sfft
 from scipy.interpolate import CubicSpline
 
 from ..contact.start import prolong
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, InputError
 from .estimate import QUANTITIES, ErrorEstimate
 
 __all__ = ["refine_surface", "refined_estimate"]
@@ -84,14 +84,15 @@ def refined_estimate(result, surface, resolve, *, periodic, indicators, fallback
     """Measured errors of ``result`` against ``resolve(finer_surface, initial)``, a solve of the
     refined surface (:func:`refine_surface`) started from ``initial``.
 
-    If that solve fails, ``fallback`` (the default estimate) is returned, with the failure in its
-    indicators under ``refined``.
+    If that solve fails (it did not converge, or the finer grid is refused, e.g. an adaptive mesh
+    above its ``max_elements``), ``fallback`` (the default estimate) is returned, with the reason in
+    its indicators under ``refined``.
     """
     fine_surface = refine_surface(surface, periodic)
     try:
         fine = resolve(fine_surface, _prolonged(result.pressure, periodic))
-    except ConvergenceError as err:
-        note = {**fallback.indicators, "refined": f"the finer solve did not converge: {err}"}
+    except (ConvergenceError, InputError) as err:
+        note = {**fallback.indicators, "refined": f"the finer solve failed: {err}"}
         return dataclasses.replace(fallback, indicators=note)
     values, reasons, extra = {}, {}, {}
     for q in QUANTITIES:

@@ -252,3 +252,14 @@ def test_unresolved_leading_edge_layers_flag_the_peak_not_the_friction():
     assert r.error_estimate["friction"] < 1e-3
     (peak,) = [w for w in r.warnings if w.kind == "peak_pressure"]
     assert "leading-edge layers thinner than a cell" in peak and "Friction does not depend on them" in peak
+
+
+def test_refined_estimate_falls_back_when_the_finer_grid_is_refused():
+    """An adaptive mesh whose finer level exceeds max_elements: the default estimate, saying why."""
+    c = bem.surfaces.cylinder(radius=0.01, n=64, length=0.006)
+    r = bem.solve(c, SLS, speed=0.05, load=1000.0, periodic=False, method="adaptive", max_elements=64)
+    ref = bem.solve(
+        c, SLS, speed=0.05, load=1000.0, periodic=False, method="adaptive", max_elements=64, error_estimate="refined"
+    ).error_estimate
+    assert ref.method == "indicators" and "max_elements" in ref.indicators["refined"]
+    assert ref["friction"] == pytest.approx(r.error_estimate["friction"])

@@ -232,7 +232,7 @@ def test_under_resolved_grid_warns_with_what_to_change(tmp_path, capsys):
     out = capsys.readouterr().out
     rec = json.loads((tmp_path / "o" / "results.json").read_text())
     warnings = rec["warnings"]
-    assert "2.05 points per shortest wavelength" in warnings[0] and "Raise [surface] n to at least 63" in warnings[0]
+    assert "2 points per shortest wavelength" in warnings[0] and "Raise [surface] n to at least 64" in warnings[0]
     kinds = {p["kind"] for point in rec["points"] for p in point["warnings"]}
     assert {"contact_fraction", "friction_forms"} <= kinds, kinds
     gathered = [w for w in warnings[1:] if "friction_eq6" in w]
