@@ -27,6 +27,7 @@ import numpy as np
 
 from . import direction as sliding_direction
 from . import fft
+from .accuracy.assess import assess, check_estimate
 from .checks import check_array, check_int, check_keywords, check_positive, show
 from .contact import ContactOptions, solve_contact
 from .errors import ConvergenceError, InputError
@@ -115,6 +116,7 @@ _SOLVE_KEYWORDS = (
     "raise_on_failure",
     "contact_options",
     "direction",
+    "error_estimate",
 )
 _PERIODIC_METHODS = ("auto", "active-set")
 
@@ -156,6 +158,7 @@ def solve(
     raise_on_failure=True,
     contact_options=None,
     direction=0.0,
+    error_estimate="indicators",
     **adaptive_options,
 ):
     """Steady sliding of a rigid surface over a viscoelastic half-space.
@@ -196,10 +199,17 @@ def solve(
         Sliding direction (radians from ``+x`` toward ``+y``; default 0), see
         :mod:`bem.direction`: ``speed`` is along it, ``friction`` opposes it, fields stay on the
         surface's grid. 1-D profiles: 0 or pi only.
+    error_estimate : {"indicators", "refined", None}
+        How ``result.error_estimate`` (the relative discretisation error of ``friction``,
+        ``contact_fraction`` and ``peak_pressure``) is obtained, see :mod:`bem.accuracy`:
+        ``"indicators"`` from the solution itself (default; a few FFTs), ``"refined"`` by solving
+        the same surface content on the grid with twice the points per axis (the cost of that
+        solve), ``None`` for no estimate and no warnings.
 
     Returns
     -------
     SlidingResult
+        With ``error_estimate`` and ``warnings`` (plain sentences saying what to change).
 
     Raises
     ------
@@ -224,6 +234,7 @@ def solve(
     """
     check_keywords("solve", adaptive_options, ADAPTIVE_OPTIONS + _SOLVE_KEYWORDS)
     surface, speed, load, approach, rtol = check_inputs(surface, material, speed, load, approach, rtol)
+    check_estimate(error_estimate)
     # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
     theta, turns = sliding_direction.plan(direction, surface.ndim, periodic, method)
     if turns:
@@ -241,6 +252,7 @@ def solve(
             initial=initial,
             raise_on_failure=raise_on_failure,
             contact_options=contact_options,
+            error_estimate=error_estimate,
             **adaptive_options,
         )
     if not isinstance(periodic, (bool, np.bool_)):
@@ -267,16 +279,19 @@ def solve(
             )
         from .halfspace.adaptive.solver import solve_adaptive
 
-        return solve_adaptive(
+        result = solve_adaptive(
             surface,
             material,
             speed=speed,
             load=load,
             rtol=rtol,
             maxiter=maxiter,
-            raise_on_failure=raise_on_failure,
+            raise_on_failure=False,
             **adaptive_options,
         )
+        finer = {**adaptive_options, "levels": len(result.meshes)}  # the same coarse mesh, one level more
+        rerun = dict(speed=speed, load=load, periodic=False, method=method, rtol=rtol, maxiter=maxiter, **finer)
+        return _assessed(result, surface, material, error_estimate, raise_on_failure, rerun, theta=0.0)
     maxiter = check_int("maxiter", maxiter, 1)
     if initial is not None:
         initial = check_array("initial", initial)
@@ -332,8 +347,27 @@ def solve(
         wall_time=time.perf_counter() - t0,
     )
     log.info("speed %.3e m/s: %s", speed, sol.message)
-    if not sol.success and raise_on_failure:
-        raise ConvergenceError(f"speed {show(speed)} m/s: {sol.message}", result)
+    rerun = dict(speed=speed, load=load, approach=approach, periodic=periodic, method=method, rtol=rtol)
+    rerun.update(maxiter=maxiter, contact_options=contact_options, direction=theta, warm=True)
+    return _assessed(result, surface, material, error_estimate, raise_on_failure, rerun, theta=theta)
+
+
+def _assessed(result, surface, material, error_estimate, raise_on_failure, rerun, *, theta):
+    """``result`` with its error estimate and warnings (:mod:`bem.accuracy`); raises
+    :class:`~bem.errors.ConvergenceError` (carrying it) if it failed and ``raise_on_failure``.
+    ``rerun``: the keywords that solve the same problem on the finer grid of the refined estimate
+    (``warm``: whether it takes the coarse pressure as its first iterate)."""
+    warm = rerun.pop("warm", False)
+
+    def resolve(finer, initial):
+        return solve(finer, material, initial=initial if warm else None, error_estimate=None, **rerun)
+
+    periodic = rerun["periodic"]
+    result = assess(
+        result, surface, material, periodic=periodic, direction=theta, estimate=error_estimate, resolve=resolve
+    )
+    if not result.success and raise_on_failure:
+        raise ConvergenceError(f"speed {show(result.speed)} m/s: {result.message}", result)
     return result
 
 

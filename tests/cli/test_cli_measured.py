@@ -121,14 +121,14 @@ def test_cover_solves_every_square_of_the_scan(folder):
 
 def test_edges_that_carry_load_get_advice_for_a_scan(folder):
     """window = "none" on a scan that is not periodic: the friction forms differ, and the advice
-    speaks of the scan's grid and boundary, not of the scales a scan does not have."""
+    speaks of the scan's boundary, not of the scales a scan does not have."""
     path = _scene(folder, 'window = "none"', "0.02")
     assert main(["run", str(path), "--out", str(folder / "w"), "--no-progress"]) == 0
     rec = json.loads((folder / "w" / "results.json").read_text())
-    forms = [w for w in rec["warnings"] if "two friction forms" in w]
+    forms = [w for w in rec["warnings"] if "friction_eq6" in w and "differs from friction" in w]
     assert forms and not any("scales" in w for w in rec["warnings"])
-    assert "keep the default boundary" in forms[0]
-    assert any("keeps the step between the scan's opposite edges" in w for w in rec["warnings"])
+    step = [w for w in rec["warnings"] if "keeps the step between the scan's opposite edges" in w]
+    assert step and "Use window 'mirror'" in step[0]
 
 
 def test_file_kind_refuses_a_non_square_map_and_names_the_kind(tmp_path, capsys):

@@ -21,7 +21,8 @@ def folder_name(theta):
 def run_sweep(run_scene, scene, out_dir, **options):
     """``run_scene`` once per direction of ``scene`` (each in its folder); the gathered record.
 
-    The top-level ``results.json`` is the first direction's record plus ``directions``; it is
+    The top-level ``results.json`` is the first direction's record plus ``directions``, with
+    ``warnings`` gathering every direction's own (each prefixed by its direction); it is
     rewritten after each direction, so an interrupted sweep keeps the directions it finished.
     """
     out = Path(out_dir)
@@ -34,6 +35,11 @@ def run_sweep(run_scene, scene, out_dir, **options):
         records.append(run_scene(one, out / folder_name(theta), **options))
         record = dict(records[0])
         record["directions"] = gather(scene, records)
+        record["warnings"] = list(scene.warnings) + [
+            f"at direction {math.degrees(t):g} deg: {w}"
+            for t, r in zip(scene.directions, records)
+            for w in r["warnings"][len(scene.warnings) :]
+        ]
         write_atomic(out / "results.json", json.dumps(record, indent=1))
     record["all_converged"] = all(r["all_converged"] for r in records)
     record["resumed_points"] = sum(r["resumed_points"] for r in records)

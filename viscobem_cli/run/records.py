@@ -11,11 +11,12 @@ import math
 
 import numpy as np
 
+from bem.accuracy import QUANTITIES, gather
 from bem.surfaces import statistics
 
 from ..guidance import hertz_radius
 
-SCALARS = ["friction", "friction_eq6", "contact_fraction", "dissipated_power", "approach"]
+SCALARS = ["friction", "friction_eq6", "contact_fraction", "dissipated_power", "approach", "peak_pressure"]
 INDENTER_SCALARS = ["contact_radius", "contact_area"]
 
 
@@ -77,6 +78,8 @@ def summarise_curve(scene, recs, l):
         curve[key], curve[key + "_se"] = [None] * n, [None] * n
     for key in ("iterations", "operator_products", "residual", "wall_time", "success", "converged"):
         curve[key] = [None] * n
+    for q in QUANTITIES:  # the largest estimated relative error over the realisations
+        curve[q + "_error"] = [None] * n
     curve["message"] = [""] * n
     for i in range(n):
         done = [p for p in (recs.get((r, l, i)) for r in range(k)) if p is not None]
@@ -88,6 +91,9 @@ def summarise_curve(scene, recs, l):
             curve["operator_products"][i] = int(sum(p["operator_products"] for p in ok))
             curve["residual"][i] = float(max(p["residual"] for p in ok))
             curve["wall_time"][i] = float(sum(p["wall_time"] for p in ok))
+        for q in QUANTITIES:
+            known = [p["error_estimate"][q] for p in ok if (p.get("error_estimate") or {}).get(q) is not None]
+            curve[q + "_error"][i] = max(known) if known else None
         curve["converged"][i] = len(ok)
         curve["success"][i] = (len(ok) == k) if len(done) == k else None
         failed = sorted({p["message"] for p in done if not p["success"]})
@@ -112,5 +118,24 @@ def point_list(scene, recs):
         "wall_time",
         "times",
         "moments",
+        "error_estimate",
+        "warnings",
     ]
     return [{k: recs[key].get(k) for k in keep if k in recs[key]} for key in sorted(recs)]
+
+
+def point_warnings(scene, recs):
+    """Every point's warnings, gathered per load: one sentence per kind of finding, with the points
+    it comes from (:func:`bem.accuracy.gather`)."""
+    several = len(scene.realisations) > 1
+    out = []
+    for l, load in enumerate(scene.loads):
+        points = []
+        for (r, ll, i), rec in sorted(recs.items(), key=lambda item: (item[0][1], item[0][2], item[0][0])):
+            if ll == l:
+                label = f"xi = {scene.xi[i]:.3g}" + (f" (realisation {r})" if several else "")
+                points.append((label, rec.get("warnings", [])))
+        found = gather(points, noun="points" if several else "speeds")
+        prefix = f"at load {load:g}, " if len(scene.loads) > 1 else ""
+        out += [prefix + str(f) for f in found]
+    return out

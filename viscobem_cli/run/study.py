@@ -10,8 +10,10 @@ The sweep itself is :mod:`viscobem_cli.run.points`: every finished point is writ
 its own file, and a rerun in the same folder resumes from them. ``results.json`` is written
 when the run starts (``complete: false``), when it is interrupted, and when it ends; a run
 killed outright is rebuilt from the point files by the next run. ``results.json["warnings"]``
-lists what is doubtful about the study and what to change (an under-resolved grid, friction
-forms that disagree).
+lists what is doubtful about the study and what to change: the scene's own (before the run),
+every point's warnings (:mod:`bem.accuracy`: estimated errors above 5 %, friction forms that
+disagree, ...) gathered one sentence per kind with the points they come from, and a friction peak
+outside the sweep.
 
 ``fields.npz`` (realisation 0 at the first load, one row per converged speed): ``heights``
 (m), ``speed`` (m/s), ``xi``, ``approach`` (m), ``pressure`` (Pa) and ``displacement`` (m)
@@ -108,6 +110,7 @@ def _base_record(scene, material, workers, scheduler):
             "maxiter": scene.maxiter,
             "periodic": scene.periodic,
             "method": scene.method,
+            "error_estimate": scene.error_estimate,
             "workers": workers,
             "scheduler": scheduler,
         },
@@ -287,6 +290,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
         "maxiter": scene.maxiter,
         "periodic": scene.periodic,
         "method": scene.method,
+        "error_estimate": scene.error_estimate,
         "anisotropy": outputs["anisotropy"],
         **keep,
     }
@@ -309,7 +313,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
             stages["point_" + name] = float(sum(spent))
     extras = _analyses(scene, record, recs, points_dir, stages)
     _write_record(out, scene, record, recs)  # the curves, for the plots
-    record["warnings"] += guidance.friction_form_warnings(record["curves"], advice=guidance.form_advice(scene.kind))
+    record["warnings"] += records.point_warnings(scene, recs)
     record["warnings"] += guidance.peak_warnings(record["curves"], scene.xi_time_source)
     record["files"] = _outputs(scene, record, recs, points_dir, out, extras, stages)
     if scene.surface.metadata.get("kind") == "measured":  # boundary choice and PSD of the measurement
@@ -353,6 +357,7 @@ def _tasks(scene, material, todo, points_dir, workers, scheduler, keep):
                     "maxiter": scene.maxiter,
                     "periodic": scene.periodic,
                     "method": scene.method,
+                    "error_estimate": scene.error_estimate,
                     "warm_start": scene.warm_start,
                     "anisotropy": scene.outputs["anisotropy"],
                     "keep_fields": keep["fields"],

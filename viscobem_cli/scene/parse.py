@@ -119,7 +119,18 @@ SCHEMA = {
         "patch",
     },  # kind = "measured"
     "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
-    "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic", "method"},
+    "solver": {
+        "rtol",
+        "maxiter",
+        "warm_start",
+        "workers",
+        "chunk",
+        "scheduler",
+        "fold_tol",
+        "periodic",
+        "method",
+        "error_estimate",
+    },
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson", "fields_precision"},
     "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
@@ -145,6 +156,7 @@ class Scene:
     warm_start: bool = True
     periodic: bool = True
     method: str = "auto"
+    error_estimate: str = "indicators"  # or "refined", or None (bem.solve's error_estimate)
     outputs: dict = field(default_factory=dict)
     source: str = ""
     raw: dict = field(default_factory=dict, repr=False)
@@ -303,12 +315,10 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
         )
     )
     speeds, xi = scene_values.speeds(raw["loading"], tau, xi_length)
-    warnings = guidance.resolution_warnings(raw["surface"], surface.n, MIN_POINTS_PER_WAVELENGTH)
-    if kind == "measured":  # the load is on the scanned patch; warnings on its boundary and cropping
+    if kind == "measured":  # the load is on the scanned patch
         from . import measured
 
         loads = measured.patch_loads(surface, loads)
-        warnings += measured.warnings_of(realisations)
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
     run = scene_values.solver(solver)
@@ -326,6 +336,11 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
             f"[solver] method must be one of {', '.join(map(repr, valid))} with periodic = "
             f"{str(run['periodic']).lower()}, got {run['method']!r}"
         )
+    warnings = guidance.resolution_warnings(surface, kind, run["periodic"], MIN_POINTS_PER_WAVELENGTH)
+    if kind == "measured":  # warnings on the scan's boundary and cropping
+        from . import measured
+
+        warnings += measured.warnings_of(realisations)
     analysis = raw.get("analysis", {})
     _check_keys(analysis, "analysis")
     _check_keys(raw.get("outputs", {}), "outputs")

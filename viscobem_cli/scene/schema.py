@@ -256,6 +256,16 @@ KEYS = [
         "auto | active-set (periodic); auto | uniform | adaptive",
         "Solver variant.",
     ),
+    Key(
+        "solver",
+        "error_estimate",
+        "string",
+        "",
+        "indicators",
+        "indicators | refined | none",
+        "How each point's discretisation error is estimated: from the solution itself, by a solve on the "
+        "grid twice as fine (the cost of that solve), or not at all.",
+    ),
     # [outputs]
     Key("outputs", "friction_curve", "boolean", "", True, "true | false", "Friction and contact against xi."),
     Key("outputs", "fields", "boolean", "", True, "true | false", "fields.npz: pressure and displacement maps."),

@@ -79,8 +79,15 @@ def solver(t):
     scheduler = t.get("scheduler")
     if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
         raise InputError(f"[solver] scheduler must be an address such as 'tcp://host:8786', got {scheduler!r}")
+    estimate = t.get("error_estimate", "indicators")
+    if estimate not in ("indicators", "refined", "none"):
+        raise InputError(
+            f"[solver] error_estimate must be 'indicators' (from the solution), 'refined' (a solve on the "
+            f"grid twice as fine) or 'none', got {estimate!r}"
+        )
     return {
         "rtol": float(rtol),
+        "error_estimate": None if estimate == "none" else estimate,
         "maxiter": integer("maxiter", 400, 1),
         "warm_start": warm,
         "workers": integer("workers", 1, 1),
