@@ -147,7 +147,9 @@ def segments(temperatures, tolerance=0.5):
 
 
 class _Segment:
-    """One isothermal sweep: log10 w, log10 E', log10 E'' and their cubic splines in log10 w."""
+    """One isothermal sweep: log10 w, log10 E', log10 E'' and their cubic splines in log10 w
+    (tabulated every 0.002 decade and read by linear interpolation, which is as accurate and
+    far faster in the overlap search)."""
 
     def __init__(self, lw, l1, l2):
         order = np.argsort(lw)
@@ -156,13 +158,15 @@ class _Segment:
         self.lw, self.l1, self.l2 = lw[keep], l1[keep], l2[keep]
         self.lo, self.hi = self.lw[0], self.lw[-1]
         if self.lw.size >= 2:
-            self.s1, self.s2 = CubicSpline(self.lw, self.l1), CubicSpline(self.lw, self.l2)
+            self.x = np.linspace(self.lo, self.hi, max(int((self.hi - self.lo) / 0.002), 1) + 1)
+            self.t1 = CubicSpline(self.lw, self.l1)(self.x)
+            self.t2 = CubicSpline(self.lw, self.l2)(self.x)
 
     def p1(self, x):
-        return self.s1(x)
+        return np.interp(x, self.x, self.t1)
 
     def p2(self, x):
-        return self.s2(x)
+        return np.interp(x, self.x, self.t2)
 
 
 def _mismatch(a, b, d, min_overlap):
@@ -185,6 +189,24 @@ def _mismatch(a, b, d, min_overlap):
     return float(np.mean(r**2))
 
 
+def _mismatch_grid(a, b, grid, min_overlap):
+    """:func:`_mismatch` at every shift of ``grid`` at once (the same numbers, vectorised)."""
+    if a.lw.size < 2 or b.lw.size < 2:
+        return np.full(grid.size, np.inf)
+    d = grid[:, None]
+    lo, hi = np.maximum(a.lo, b.lo + d), np.minimum(a.hi, b.hi + d)
+    xb = b.lw[None, :] + d  # b's points in a's frame
+    ib = (xb >= lo) & (xb <= hi)
+    ia = (a.lw[None, :] >= lo) & (a.lw[None, :] <= hi)
+    xa = a.lw[None, :] - d  # a's points in b's frame
+    rb = (a.p1(xb) - b.l1) ** 2 + (a.p2(xb) - b.l2) ** 2
+    ra = (a.l1 - b.p1(xa)) ** 2 + (a.l2 - b.p2(xa)) ** 2
+    count = ia.sum(axis=1) + ib.sum(axis=1)
+    total = np.where(ib, rb, 0.0).sum(axis=1) + np.where(ia, ra, 0.0).sum(axis=1)
+    ok = (hi[:, 0] - lo[:, 0] >= min_overlap) & (count >= 3)
+    return np.where(ok, total / np.maximum(2 * count, 1), np.inf)
+
+
 def pairwise_shift(a, b, min_overlap=0.25, step=0.02, around=None, window=0.5):
     """Shift ``d`` (decades of frequency) of segment ``b`` that best overlays it on ``a``.
 
@@ -197,7 +219,7 @@ def pairwise_shift(a, b, min_overlap=0.25, step=0.02, around=None, window=0.5):
         grid = np.arange(a.lo - b.hi, a.hi - b.lo + step, step)
     else:
         grid = np.arange(around - window, around + window + step, step)
-    cost = np.array([_mismatch(a, b, d, min_overlap) for d in grid])
+    cost = _mismatch_grid(a, b, grid, min_overlap)
     if not np.isfinite(cost).any() or (around is not None and not np.isfinite(cost).all()):
         return None  # a search near an estimate must not end on the edge of the overlap
     k = int(np.argmin(cost))

@@ -287,7 +287,7 @@ def refine_terms(w, e1, e2, E0, moduli, times, *, loss_floor=1e-4, bounds=None, 
             xtol=1e-12,
             ftol=1e-12,
             gtol=1e-12,
-            max_nfev=100 if law is None else 200,
+            max_nfev=300,
         )
     if not sol.cost <= 0.5 * np.sum(model.residual(p0) ** 2):
         return E0, moduli, times, law

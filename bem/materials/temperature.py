@@ -324,9 +324,11 @@ def fit_law(kind, temperatures, log_shift, reference_temperature, *, groups=None
     weights : array_like, optional
         Per-point weights of the residuals.
 
-    WLF: for each ``C2`` on a grid beyond the coldest point's pole the model is linear in
+    Notes
+    -----
+    For WLF, for each ``C2`` on a grid beyond the coldest point's pole the model is linear in
     ``C1`` and the constants; the best start is refined by nonlinear least squares with
-    ``C2 >= T_ref - T_min + 1 K``. Arrhenius: linear least squares.
+    ``C2 >= T_ref - T_min + 1 K``. Arrhenius is linear least squares.
     """
     T = check_kelvin("temperatures", temperatures)
     T = np.atleast_1d(T)

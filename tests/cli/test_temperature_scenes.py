@@ -133,6 +133,10 @@ def test_a_dma_table_with_temperatures_gives_a_master_curve_and_its_law(tmp_path
     [
         (("temperatures = [290.0, 300.0, 312.5]", "temperatures = [290.0, -3.0]"), ["temperatures", "> 0 K"]),
         (("temperatures = [290.0, 300.0, 312.5]", "temperatures = [150.0]"), ["reference_temperature - C2", "200"]),
+        (
+            ("temperatures = [290.0, 300.0, 312.5]", "temperatures = [200.2]"),
+            ["[loading] temperatures", "log10 a_T = 4491"],
+        ),
         (('shift = { law = "wlf", C1 = 9.0, C2 = 100.0, reference_temperature = 300.0 }\n', ""), ["shift law"]),
         (('law = "wlf", C1 = 9.0', 'law = "vft", C1 = 9.0'), ["shift", "wlf", "arrhenius"]),
         (("C2 = 100.0,", "C2 = 100.0, Tg = 200.0,"), ["'Tg'", "valid keys"]),

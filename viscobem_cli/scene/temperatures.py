@@ -169,7 +169,13 @@ def loading_temperatures(t, law):
 def scene_fields(raw, material):
     """``{"shift": law or None, "temperatures": tuple}`` for the Scene, from the raw tables."""
     law = shift_law(raw["material"], material)
-    return {"shift": law, "temperatures": loading_temperatures(raw["loading"], law)}
+    temps = loading_temperatures(raw["loading"], law)
+    for T in temps:  # a shift beyond what floating point holds is named here, not in the run
+        try:
+            material.at_temperature(T, law)
+        except InputError as err:
+            raise InputError(f"[loading] temperatures: {err}") from None
+    return {"shift": law, "temperatures": temps}
 
 
 def scene_at(scene, T):
