@@ -365,14 +365,8 @@ def _table(result, markdown=False):
             [r["method"], str(r["terms"])] + [f"{r[c]:.4f}" for c in cols] + [f"{r['time']:.2f}"]
             for r in result[problem]
         ]
-        lines.append(f"{problem} (worst over {result['seeds']} seeds; relative errors, log_aT in decades)")
-        if markdown:
-            lines += ["", "| " + " | ".join(heads) + " |", "|" + "---|" * len(heads)]
-            lines += ["| " + " | ".join(r) + " |" for r in rows]
-            lines.append("")
-        else:
-            widths = [max(len(x) for x in col) for col in zip(heads, *rows)]
-            lines += ["  ".join(x.ljust(w) for x, w in zip(r, widths)) for r in [heads] + rows]
+        title = f"{problem} (worst over {result['seeds']} seeds; relative errors, log_aT in decades)"
+        lines += _render(title, heads, rows, markdown)
     lines += _cases_table(result["cases"], markdown)
     return "\n".join(lines)
 
@@ -413,15 +407,21 @@ def _cases_table(cases, markdown):
             )
             for r in rows
         ]
-        lines.append(f"case {name} (noise-free; relative errors, log_aT and law_sigma in decades, cpu s)")
-        if markdown:
-            lines += ["", "| " + " | ".join(heads) + " |", "|" + "---|" * len(heads)]
-            lines += ["| " + " | ".join(r) + " |" for r in body]
-            lines.append("")
-        else:
-            widths = [max(len(x) for x in col) for col in zip(heads, *body)]
-            lines += ["  ".join(x.ljust(w) for x, w in zip(r, widths)) for r in [heads] + body]
+        title = f"case {name} (noise-free; relative errors, log_aT and law_sigma in decades, cpu s)"
+        lines += _render(title, heads, body, markdown)
     return lines
+
+
+def _render(title, heads, rows, markdown):
+    """A titled table: markdown, or aligned text."""
+    if markdown:
+        return (
+            [title, "", "| " + " | ".join(heads) + " |", "|" + "---|" * len(heads)]
+            + ["| " + " | ".join(r) + " |" for r in rows]
+            + [""]
+        )
+    widths = [max(len(x) for x in col) for col in zip(heads, *rows)]
+    return [title] + ["  ".join(x.ljust(w) for x, w in zip(r, widths)) for r in [heads] + rows]
 
 
 def run(quick=False, out_dir=None, seeds=None, echo=print):

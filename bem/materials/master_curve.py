@@ -53,7 +53,17 @@ from threadpoolctl import threadpool_limits
 
 from ..checks import check_array, check_positive
 from ..errors import InputError
-from .prony_fit import FitReport, SeriesModel, check_dma, default_times, make_report, refine_terms, solve_nnls
+from .prony_fit import (
+    FitReport,
+    SeriesModel,
+    check_dma,
+    default_times,
+    grid_fit,
+    make_report,
+    no_relaxed_modulus,
+    refine_terms,
+    solve_nnls,
+)
 from .temperature import WLF, Arrhenius, check_kelvin, fit_law, wlf_c2_min
 
 __all__ = ["MasterCurveReport", "fit_master_curve", "segments", "neighbour_shifts", "overlap_shifts", "band_gaps"]
@@ -303,11 +313,10 @@ class _Data:
         self.w, self.T, self.e1, self.e2 = w, T, e1, e2
         self.per = terms_per_decade
 
-    def projected_residual(self, law, taus):
-        """Relative residuals of the NNLS Prony fit on ``taus`` to the data shifted by ``law``."""
+    def projected_norm(self, law, taus):
+        """Norm of the relative residuals of the NNLS Prony fit on ``taus`` to the data shifted by ``law``."""
         wr = self.w * 10.0 ** law(self.T)
-        x, rnorm = solve_nnls(wr, self.e1, self.e2, taus, loss_floor=NNLS_FLOOR)
-        return x, rnorm
+        return solve_nnls(wr, self.e1, self.e2, taus, loss_floor=NNLS_FLOOR)[1]
 
     def times_for(self, law, extend=1.0):
         return default_times(self.w * 10.0 ** law(self.T), self.per, extend)
@@ -325,7 +334,12 @@ def _grid_start(kind, data, tref):
     else:
         laws = [Arrhenius(ea, tref) for ea in np.geomspace(2e4, 1e6, 30)]
     laws = [law for law in laws if np.max(np.abs(law(data.T))) <= MAX_TRIAL_SHIFT]
-    scores = [data.projected_residual(law, data.times_for(law))[1] for law in laws]
+    if not laws:
+        raise InputError(
+            f"master curve: every trial {kind} law shifts these sweeps by more than {MAX_TRIAL_SHIFT:g} decades; "
+            "check the temperatures, or impose the law"
+        )
+    scores = [data.projected_norm(law, data.times_for(law)) for law in laws]
     return laws[int(np.argmin(scores))]
 
 
@@ -517,18 +531,13 @@ def fit_master_curve(
         if joint:
             law = _projected_fit(law, data)
     taus = data.times_for(law)
-    x, _ = solve_nnls(w * 10.0 ** law(T), e1, e2, taus, smoothing=smoothing, loss_floor=NNLS_FLOOR)
-    if not x[0] > 0:
-        w_r = w * 10.0 ** law(T)
-        _check_superposition(label, temps, w_r, data, 0.0, x[1:], np.sort(taus), max_mismatch)  # a misfit says more
-        low = int(np.argmin(w_r))
-        raise InputError(
-            "master curve: the fit gives a relaxed modulus E0 <= 0: at the data's lowest reduced frequency "
-            f"({w_r[low]:.3g} rad/s at {tref:g} K, E' = {e1[low]:.4g} Pa) the material is still relaxing steeply; "
-            "add sweeps at higher temperatures (or lower frequencies)"
+    w_r = w * 10.0 ** law(T)
+    E0, moduli, times = grid_fit(w_r, e1, e2, taus, smoothing=smoothing, loss_floor=NNLS_FLOOR)
+    if not E0 > 0:
+        _check_superposition(label, temps, w_r, data, 0.0, moduli, times, max_mismatch)  # a misfit says more
+        raise no_relaxed_modulus(
+            f"master curve at {tref:g} K", w_r, e1, "add sweeps at higher temperatures (or lower frequencies)"
         )
-    keep = x[1:] > 1e-12 * x.sum()
-    E0, moduli, times = float(x[0]), x[1:][keep], np.sort(taus)[keep]
     if smoothing == 0 and moduli.size:
         fitted = kind is not None and joint
         E0, moduli, times, joint_law = refine_terms(

@@ -309,6 +309,25 @@ def merge_close_terms(moduli, times, decades=0.01, rel=1e-10):
     return mk[keep], tk
 
 
+def grid_fit(w, e1, e2, taus, *, smoothing=0.0, loss_floor=1e-4):
+    """NNLS on the times ``taus`` (s): ``(E0, moduli, times)`` of the non-zero terms, times
+    ascending; ``E0`` may come out 0 (:func:`no_relaxed_modulus`)."""
+    taus = np.sort(np.asarray(taus, dtype=float))
+    x, _ = solve_nnls(w, e1, e2, taus, smoothing=smoothing, loss_floor=loss_floor)
+    keep = x[1:] > 1e-12 * x.sum()
+    return float(x[0]), x[1:][keep], taus[keep]
+
+
+def no_relaxed_modulus(who, w, e1, advice):
+    """The InputError of a fit whose relaxed modulus comes out <= 0, naming the data's lowest
+    frequency ``w`` (rad/s, in the fit's frame) and ``E'`` (Pa) there."""
+    low = int(np.argmin(w))
+    return InputError(
+        f"{who}: the data imply a relaxed modulus E0 <= 0: at their lowest frequency ({w[low]:.3g} rad/s, "
+        f"E' = {e1[low]:.4g} Pa) the material is still relaxing steeply; {advice}"
+    )
+
+
 def fit_prony_series(w, e1, e2, taus, *, smoothing=0.0, loss_floor=1e-4, refine=True):
     """NNLS fit in relative error; returns ``(E0, moduli, times, report)`` (zero terms dropped).
 
@@ -319,16 +338,9 @@ def fit_prony_series(w, e1, e2, taus, *, smoothing=0.0, loss_floor=1e-4, refine=
     """
     smoothing = check_positive("smoothing", smoothing, allow_zero=True)
     taus = np.sort(np.asarray(taus, dtype=float))
-    x, _ = solve_nnls(w, e1, e2, taus, smoothing=smoothing, loss_floor=loss_floor)
-    if not x[0] > 0:
-        low = int(np.argmin(w))
-        raise InputError(
-            "fit_prony: the data imply a relaxed modulus E0 <= 0: at their lowest frequency "
-            f"({w[low]:.3g} rad/s, E' = {e1[low]:.4g} Pa) the material is still relaxing steeply; extend the "
-            "data to lower frequencies or pass times covering them"
-        )
-    keep = x[1:] > 1e-12 * x.sum()
-    E0, moduli, times = float(x[0]), x[1:][keep], taus[keep]
+    E0, moduli, times = grid_fit(w, e1, e2, taus, smoothing=smoothing, loss_floor=loss_floor)
+    if not E0 > 0:
+        raise no_relaxed_modulus("fit_prony", w, e1, "extend the data to lower frequencies or pass times covering them")
     if refine and smoothing == 0 and moduli.size:
         E0, moduli, times, _ = refine_terms(
             w, e1, e2, E0, moduli, times, loss_floor=loss_floor, bounds=(taus[0], taus[-1])
