@@ -15,13 +15,17 @@ from bem.accuracy import QUANTITIES, gather
 from bem.surfaces import statistics
 
 from ..guidance import hertz_radius
+from ..scene.temperatures import excited_band
 
 SCALARS = ["friction", "friction_eq6", "contact_fraction", "dissipated_power", "approach", "peak_pressure"]
 INDENTER_SCALARS = ["contact_radius", "contact_area"]
 
 
 def material_record(m):
-    return {
+    """The material's series; for a fitted one also ``fit`` (the fit report: errors, worst points,
+    the data's band in this material's frame, plateau flags; for a master curve the shifts and
+    the law) and ``data_band`` (rad/s)."""
+    rec = {
         "E0": m.E0,
         "E_inf": m.E_inf,
         "nu": m.nu,
@@ -30,6 +34,22 @@ def material_record(m):
         "creep_compliances": m.compliances.tolist(),
         "creep_times": m.creep_times.tolist(),
     }
+    if m.fit_report is not None:
+        rec["fit"] = m.fit_report.as_dict()
+        rec["data_band"] = list(m.data_band)
+    return rec
+
+
+def scene_material_record(scene):
+    """:func:`material_record` of the scene's material, with its shift law (``shift``: the law's
+    name, constants and reference temperature, K) and the band of frequencies the sliding
+    excites (``excited_band``, rad/s; :func:`viscobem_cli.scene.temperatures.excited_band`)."""
+    rec = material_record(scene.material)
+    if scene.shift is not None:
+        rec["shift"] = {"law": type(scene.shift).__name__, **vars(scene.shift)}
+    band = excited_band(scene)
+    rec["excited_band"] = None if band is None else list(band)
+    return rec
 
 
 def surface_record(scene):

@@ -91,7 +91,7 @@ def _base_record(scene, material, workers, scheduler):
         "conventions": "heights positive toward the half-space; the surface slides in +x (axis 0); "
         "friction = dissipation form, friction_eq6 = -(1/F_N) int p dh/dx dA; ensemble "
         "values are means over realisations with standard errors in *_se",
-        "material": records.material_record(scene.material),
+        "material": records.scene_material_record(scene),
         "material_solved": {
             **records.material_record(material),
             "terms": int(material.moduli.size),

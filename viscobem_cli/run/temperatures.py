@@ -1,7 +1,9 @@
 """Friction against speed and temperature: the study once per temperature of the scene, and the
-combined record (the scene keys are described in :mod:`viscobem_cli.scene.temperatures`)."""
+combined record (the scene keys are described in :mod:`viscobem_cli.scene.temperatures`).
 
-import dataclasses
+Each temperature's study (:func:`viscobem_cli.scene.temperatures.scene_at`) lists its own
+material, ``xi_time`` and ``xi``, all from the material at that temperature."""
+
 import json
 import time
 from pathlib import Path
@@ -12,6 +14,7 @@ from bem.materials.master_curve import MasterCurveReport
 
 from ..files import write_atomic
 from ..plots.temperatures import plot_master_curve, plot_temperature_sweep
+from ..scene.temperatures import scene_at
 
 
 def folder_name(T):
@@ -26,7 +29,7 @@ def run(scene, out_dir, run_scene, *, progress=True, scheduler=None, workers=Non
     started = time.perf_counter()
     records = []
     for T in scene.temperatures:
-        sub = dataclasses.replace(scene, material=scene.material.at_temperature(T, scene.shift), temperatures=())
+        sub = scene_at(scene, T)  # the material at T, and xi with its time
         records.append(run_scene(sub, out / folder_name(T), progress=progress, scheduler=scheduler, workers=workers))
     law = scene.shift
     table = {

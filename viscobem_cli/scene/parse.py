@@ -9,7 +9,8 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
                  |  E0, moduli, times (Prony)  |  E0, compliances, times (creep)
                  |  dma = "file.csv" (columns: frequency, storage E', loss E'' [, temperature];
                     dma_frequency_unit = "rad/s" | "Hz"; dma_modulus_unit = "Pa" | "kPa" | "MPa" | "GPa";
-                    dma_temperature_unit = "K" | "C"; dma_terms_per_decade = 3.0)
+                    dma_temperature_unit = "K" | "C"; dma_terms_per_decade = 3.0; columns named in a
+                    header row or by dma_columns: viscobem_cli.scene.dma)
                  shift = { law = "wlf", C1, C2, reference_temperature (K) } | { law = "arrhenius",
                     activation_energy (J/mol), reference_temperature (K) }  (see viscobem_cli.scene.temperatures)
     [surface]    kind = "self_affine" | "sinusoid" | "measured" | "file" | "sphere" | "cylinder", length (m),
@@ -88,6 +89,7 @@ SCHEMA = {
         "dma_terms_per_decade",
         "dma_modulus_unit",
         "dma_temperature_unit",
+        "dma_columns",
         "shift",
     },
     "surface": {
@@ -357,7 +359,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     from .directions import parse as parse_directions
 
     run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
-    return Scene(
+    scene = Scene(
         title=str(raw.get("title", Path(source).stem)),
         material=material,
         surface=surface,
@@ -381,6 +383,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
         **temperatures.scene_fields(raw, material),
         dma=temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None,
     )
+    return temperatures.with_material_warnings(scene)  # what the DMA data do not cover
 
 
 def load(path=None, *, overrides=()):

@@ -93,7 +93,15 @@ KEYS = [
         "series; with a temperature column, a master curve and its shift law (see shift); relative to the "
         "scene file.",
     ),
-    Key("material", "dma_frequency_unit", "string", "", "rad/s", "rad/s | Hz", "Unit of the DMA frequencies."),
+    Key(
+        "material",
+        "dma_frequency_unit",
+        "string",
+        "",
+        "rad/s",
+        "rad/s | Hz",
+        "Unit of the DMA frequencies (or in the header).",
+    ),
     Key("material", "dma_terms_per_decade", "number", "", 3.0, "> 0", "Prony terms per decade of the DMA fit."),
     # [surface]
     Key(
@@ -300,7 +308,15 @@ KEYS = [
 # Keys parsed by viscobem_cli.scene.temperatures (temperature and master curves), viscobem_cli.scene.directions
 # (sliding direction) and viscobem_cli.scene.measured (measured topographies).
 KEYS += [
-    Key("material", "dma_modulus_unit", "string", "", "Pa", "Pa | kPa | MPa | GPa", "Unit of the DMA moduli."),
+    Key(
+        "material",
+        "dma_modulus_unit",
+        "string",
+        "",
+        "Pa",
+        "Pa | kPa | MPa | GPa",
+        "Unit of the DMA moduli (or in the header).",
+    ),
     Key(
         "material",
         "dma_temperature_unit",
@@ -308,7 +324,17 @@ KEYS += [
         "",
         "K",
         "K | C",
-        "Unit of the DMA table's temperature column (4-column tables).",
+        "Unit of the DMA table's temperature column (4-column tables); a kelvin value below 100 K is rejected "
+        "as looking like degrees Celsius.",
+    ),
+    Key(
+        "material",
+        "dma_columns",
+        "table",
+        "",
+        "by header name, else by position",
+        "{frequency, storage, loss, temperature} = a header name or a column number (1-based)",
+        "Which columns of the DMA table hold what, when the header's names are not recognised.",
     ),
     Key(
         "material",
@@ -317,7 +343,8 @@ KEYS += [
         "",
         None,
         '{law = "wlf", C1, C2, reference_temperature} | {law = "arrhenius", activation_energy, reference_temperature}',
-        "Time-temperature shift law (K, J/mol); with a 4-column DMA table its parameters are fitted.",
+        "Time-temperature shift law (K, J/mol). With a temperature column in the DMA table: all its constants "
+        "impose it, only law and reference_temperature fit it jointly with the Prony series.",
     ),
     Key(
         "loading",
@@ -325,7 +352,7 @@ KEYS += [
         "list",
         "K",
         None,
-        "numbers > 0; needs [material] shift",
+        "numbers >= 100 (kelvin); needs [material] shift",
         "One speed sweep per temperature.",
     ),
     Key(
