@@ -14,9 +14,9 @@ import numpy as np
 from ..errors import InputError
 from . import indicators as ind
 from .estimate import from_indicators, not_estimated
-from .findings import findings_of
+from .findings import Finding, findings_of
 
-__all__ = ["ESTIMATES", "assess", "check_estimate", "indicators_of"]
+__all__ = ["ESTIMATES", "assess", "check_estimate", "indicators_of", "material_findings"]
 
 ESTIMATES = ("indicators", "refined", None)
 
@@ -78,6 +78,19 @@ def assess(result, surface, material, *, periodic, direction=0.0, estimate="indi
             from .refined import refined_estimate  # scipy.interpolate: only when asked for
 
             est = refined_estimate(result, surface, resolve, periodic=periodic, indicators=values, fallback=est)
-        found = findings_of(result, est, values, surface.n)
+        found = findings_of(result, est, values, surface.n) + material_findings(
+            result, surface, material, periodic=periodic, direction=direction
+        )
     est = dataclasses.replace(est, seconds=time.perf_counter() - t0)
     return dataclasses.replace(result, error_estimate=est, warnings=tuple(found))
+
+
+def material_findings(result, surface, material, *, periodic, direction=0.0):
+    """What the material's data do not cover of the frequencies this solve loads it at
+    (:func:`bem.accuracy.indicators.loading_band`; :meth:`bem.Material.extrapolation_warnings`),
+    as findings of kind ``"material_data"``: a fitted material used beyond its DMA data, or a
+    shift law beyond its range. Empty at rest and for a material given by its constants."""
+    w_low, w_high = ind.loading_band(surface, result.speed, periodic=periodic, direction=direction)
+    if w_high == 0.0:
+        return tuple(Finding(text, "material_data") for text in material.warnings)
+    return tuple(Finding(text, "material_data") for text in material.extrapolation_warnings(w_low, w_high))

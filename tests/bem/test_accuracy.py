@@ -263,3 +263,30 @@ def test_refined_estimate_falls_back_when_the_finer_grid_is_refused():
     ).error_estimate
     assert ref.method == "indicators" and "max_elements" in ref.indicators["refined"]
     assert ref["friction"] == pytest.approx(r.error_estimate["friction"])
+
+
+# ---------------------------------------------------------------- the material's data
+
+
+def _dma_fitted(w_lo, w_hi):
+    """A rubber fitted to noise-free DMA data over [w_lo, w_hi] rad/s."""
+    truth = rubber(100, 8, 1e-6, 1e1)
+    w = np.logspace(math.log10(w_lo), math.log10(w_hi), 41)
+    e = truth.complex_modulus(w)
+    return bem.Material.fit_prony(w, e.real, e.imag)
+
+
+def test_a_solve_beyond_the_dma_data_says_so():
+    """A 1 mm cell sliding at 1 m/s loads the material at 2 pi/L v = 6.3e3 .. pi/dx v = 2e5 rad/s
+    (64 points): data that stop at 1e3 rad/s leave that band unmeasured, and the result says
+    so; data over 1e-2..1e7 rad/s cover it, and the result has no such warning."""
+    s = bem.surfaces.self_affine(64, 1e-3, hurst=0.8, scales=8, rms_slope=0.2, seed=3)
+    short = bem.solve(s, _dma_fitted(1e-4, 1e3), speed=1.0, load=0.05 * 1e6 * 1e-6)
+    found = [w for w in short.warnings if w.kind == "material_data"]
+    assert len(found) == 1 and "rad/s" in found[0]
+    covered = bem.solve(s, _dma_fitted(1e-2, 1e7), speed=1.0, load=0.05 * 1e6 * 1e-6)
+    assert not [w for w in covered.warnings if w.kind == "material_data"]
+    # a material given by its constants has no data to be beyond
+    assert not [
+        w for w in bem.solve(s, rubber(100, 8, 1e-6, 1e1), speed=1.0, load=0.05).warnings if w.kind == "material_data"
+    ]

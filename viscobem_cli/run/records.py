@@ -144,9 +144,15 @@ def point_list(scene, recs):
     return [{k: recs[key].get(k) for k in keep if k in recs[key]} for key in sorted(recs)]
 
 
+def _about_material(warning):
+    return isinstance(warning, dict) and warning.get("kind") == "material_data"
+
+
 def point_warnings(scene, recs):
     """Every point's warnings, gathered per load: one sentence per kind of finding, with the points
-    it comes from (:func:`bem.accuracy.gather`)."""
+    it comes from (:func:`bem.accuracy.gather`). The material's data coverage is left out: the
+    scene states it once for the band all its speeds load
+    (:func:`viscobem_cli.scene.temperatures.material_warnings`)."""
     several = len(scene.realisations) > 1
     out = []
     for l, load in enumerate(scene.loads):
@@ -154,7 +160,8 @@ def point_warnings(scene, recs):
         for (r, ll, i), rec in sorted(recs.items(), key=lambda item: (item[0][1], item[0][2], item[0][0])):
             if ll == l:
                 label = f"xi = {scene.xi[i]:.3g}" + (f" (realisation {r})" if several else "")
-                points.append((label, rec.get("warnings", [])))
+                found = [w for w in rec.get("warnings", []) if not _about_material(w)]
+                points.append((label, found))
         found = gather(points, noun="points" if several else "speeds")
         prefix = f"at load {load:g}, " if len(scene.loads) > 1 else ""
         out += [prefix + str(f) for f in found]
