@@ -85,10 +85,19 @@ def _scene_keys():
         out.append("|---|---|---|---|---|---|")
         for key in _ordered(keys, info):
             d = info[key]  # the schema's key names come from the same table
-            cells = [f"`{key}`", d["type"], d["unit"], d["default"] or "none", d["range"], d["doc"]]
-            out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+            cells = [d["type"], d["unit"], d["default"] or "none", d["range"], d["doc"]]
+            out.append("| " + " | ".join([f"`{key}`"] + [table_cell(c) for c in cells]) + " |")
         out.append("")
     return "\n".join(out)
+
+
+_MARKUP = re.compile(r"([\\`*_{}\[\]>|#!])")
+
+
+def table_cell(text):
+    """Plain text as a Markdown table cell that renders as written: ``|`` would end the cell, a
+    trailing ``{...}`` would become HTML attributes (attr_list), ``*``/``_`` emphasis, ``<`` a tag."""
+    return _MARKUP.sub(r"\\\1", str(text)).replace("<", "&lt;")
 
 
 def _ordered(keys, info):
@@ -290,9 +299,10 @@ def _run_example(script, out_dir):
             [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
         ),
     )
-    run = subprocess.run(
+    out_dir.mkdir(parents=True)
+    run = subprocess.run(  # run from an empty folder, as a user who copied the script would
         [sys.executable, str(script), str(out_dir)],
-        cwd=EXAMPLES,
+        cwd=out_dir,
         env=env,
         capture_output=True,
         text=True,
