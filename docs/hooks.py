@@ -4,8 +4,11 @@ A page holds a marker comment where a generated block goes:
 
 - ``<!-- generated:scene-keys -->``: every scene key the parser accepts
   (``viscobem_cli.scene.SCHEMA``), with the type, unit, default, range and meaning from the
-  code's table of keys (``viscobem_cli.scene.schema.KEYS``); then the built-in scenes, read from
-  their TOML files.
+  code's table of keys (``viscobem_cli.scene.schema.KEYS``, each cell escaped so that Markdown
+  shows it as written); then the built-in scenes, read from their TOML files, each with its
+  measured run time and output size from ``docs/timings.json`` (``docs/timings.py``).
+- ``<!-- generated:extras -->``: the pip extras of ``pyproject.toml`` with what each adds
+  (``viscobem_cli.catalog.EXTRA_PURPOSE``).
 - ``<!-- generated:validation -->``: the latest validation report (``docs/validation/``:
   ``report.json`` rendered by ``validation.report``, else ``report.md``) and the quick set's
   stored baselines (``validation/baselines/quick.json``).
@@ -106,14 +109,48 @@ def _ordered(keys, info):
     return known + sorted(set(keys) - set(known))
 
 
+def _measured_runs():
+    """The recorded runs of docs/timings.json (see docs/timings.py), by key."""
+    path = DOCS / "timings.json"
+    return json.loads(path.read_text(encoding="utf-8")).get("runs", {}) if path.is_file() else {}
+
+
 def _builtin_scenes():
     from viscobem_cli import scene
 
+    sys.path.insert(0, str(DOCS))
+    try:
+        import timings
+    finally:
+        sys.path.remove(str(DOCS))
+    runs = _measured_runs()
     out = []
     for name in scene.builtin_scenes():
         text = (scene.SCENE_DIR / f"{name}.toml").read_text(encoding="utf-8")
-        out.append(f"### `{name}`\n\n`viscobem run {name}`\n\n```toml\n{text.rstrip()}\n```\n")
+        run = runs.get(f"run_{name}")
+        took = ""
+        if run:
+            took = f": [{timings.time_text(run['wall_s'])} on 2 cores](timings.md#run_{name})"
+            if run.get("output_bytes"):
+                took += f", [{timings.size_text(run['output_bytes'])}](timings.md#run_{name}) of output"
+        out.append(f"### `{name}`\n\n`viscobem run {name}`{took}\n\n```toml\n{text.rstrip()}\n```\n")
     return "\n".join(out)
+
+
+def _extras():
+    """The pip extras of pyproject.toml, each with what it adds (``viscobem_cli.catalog``)."""
+    from viscobem_cli.catalog import EXTRA_PURPOSE
+
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]
+    rows = ["| extra | install | what it adds |", "|---|---|---|"]
+    for name in extras:
+        rows.append(f'| `{name}` | `pip install ".[{name}]"` | {EXTRA_PURPOSE.get(name, "")} |')
+    return "\n".join(rows) + "\n"
 
 
 # --- JSON records ----------------------------------------------------------------------------
@@ -396,6 +433,7 @@ def on_page_markdown(markdown, page, config, files):
             _scene_keys() + "\n## Built-in scenes\n\n" + _builtin_scenes()
         ),
         "<!-- generated:validation -->": _validation,
+        "<!-- generated:extras -->": _extras,
         "<!-- generated:benchmarks -->": _benchmarks,
         "<!-- generated:gallery -->": _gallery_markdown,
         "<!-- generated:seed-figures -->": lambda: _record(

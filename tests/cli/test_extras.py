@@ -16,6 +16,7 @@ import textwrap
 from pathlib import Path
 
 import pytest
+from conftest import make_tiny_scene
 
 from viscobem_cli.catalog import EXTRAS
 
@@ -36,26 +37,7 @@ BLOCKER = textwrap.dedent(
     sys.meta_path.insert(0, _Absent())
     """
 )
-SCENE = """
-[material]
-E0 = 3.3e6
-E_inf = 1.0e7
-creep_time = 0.01
-[surface]
-kind = "self_affine"
-length = 0.01
-n = 16
-hurst = 0.8
-scales = 4
-rms_height = 2e-5
-seed = 1
-[loading]
-load = 0.3
-speeds = [0.01, 0.1]
-[outputs]
-plots = false
-vtk = {vtk}
-"""
+SCENE = make_tiny_scene("plots = false\nvtk = {vtk}")
 
 
 @pytest.fixture(scope="module")
@@ -157,7 +139,7 @@ def test_measured_topography_asked_for(site, tmp_path):
     scene = "\n".join(
         line
         for line in scene.splitlines()
-        if line.split(" =")[0] not in {"length", "hurst", "scales", "rms_height", "seed"}
+        if line.split(" =")[0] not in {"length", "hurst", "scales", "rms_height", "seed", "nu"}
     )
     (tmp_path / "m.toml").write_text(scene)
     one_line_naming(viscobem(site, ["SurfaceTopography"], "run", "m.toml", "--out", "o", cwd=tmp_path), "topography")

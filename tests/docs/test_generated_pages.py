@@ -4,6 +4,8 @@ import html
 import re
 from html.parser import HTMLParser
 
+from docs_fixtures import hooks, render  # noqa: F401  (fixtures)
+
 
 class _Cells(HTMLParser):
     """Rows of every table: a list of cell texts (tags dropped, entities decoded)."""

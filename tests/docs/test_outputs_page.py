@@ -13,35 +13,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import make_tiny_scene
 from viscobem_cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
 PAGE = (ROOT / "docs" / "outputs.md").read_text(encoding="utf-8")
-SCENE = """
-[material]
-E0 = 3.3e6
-E_inf = 1.0e7
-creep_time = 0.01
-[surface]
-kind = "self_affine"
-length = 0.01
-n = 16
-hurst = 0.8
-scales = 4
-rms_height = 2e-5
-seed = 1
-[loading]
-load = 0.3
-speeds = [0.01, 0.1]
-[outputs]
-friction_curve = true
-fields = true
-plots = true
-vtk = {vtk}
-anisotropy = true
-contact_psd = true
-persson = true
-"""
+OUTPUTS = "friction_curve = true\nfields = true\nplots = true\nvtk = {vtk}\nanisotropy = true\ncontact_psd = true\npersson = true"
 # the conditions of the page's "when" column that hold for SCENE; any other condition: not this scene
 HOLDS = {"always", "`plots`", "`anisotropy = true`", "`contact_psd = true`", "`persson = true`", "a periodic cell"}
 
@@ -73,7 +50,7 @@ def run(tmp_path_factory):
         vtk = False
     folder = tmp_path_factory.mktemp("outputs")
     scene = folder / "scene.toml"
-    scene.write_text(SCENE.format(vtk="true" if vtk else "false"))
+    scene.write_text(make_tiny_scene(OUTPUTS.format(vtk="true" if vtk else "false")))
     assert main([ "run", str(scene), "--out", str(folder / "out"), "--no-progress"]) == 0
     return folder / "out", vtk
 

@@ -6,6 +6,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
+from conftest import make_tiny_scene
 
 import bem
 from validation import vtk_io
@@ -13,29 +14,7 @@ from viscobem_cli.main import main
 
 pv = pytest.importorskip("pyvista", reason="the vtk extra")
 
-SCENE = """
-[material]
-E0 = 3.3e6
-E_inf = 1.0e7
-creep_time = 0.01
-nu = 0.5
-[surface]
-kind = "self_affine"
-length = 0.01
-n = 16
-hurst = 0.8
-scales = 4
-rms_height = 2e-5
-seed = 2
-[loading]
-load = 0.3
-speeds = [0.001, 0.01, 0.1]
-[solver]
-rtol = 1e-9
-[outputs]
-vtk = true
-plots = false
-"""
+SCENE = make_tiny_scene("vtk = true\nplots = false", speeds="[0.001, 0.01, 0.1]", seed=2, solver="rtol = 1e-9")
 
 
 def every_array_has_a_unit(grid):

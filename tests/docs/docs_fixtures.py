@@ -1,4 +1,5 @@
-"""Shared by the documentation tests: the site's hooks module and its Markdown renderer.
+"""Fixtures of the documentation tests: the site's hooks module and its Markdown renderer
+(imported by the test modules: a conftest.py here would shadow the suite's own ``conftest``).
 
 They need the docs extra (``pip install ".[docs]"``); without it they are skipped, and CI runs
 them in its documentation step.
