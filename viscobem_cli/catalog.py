@@ -19,7 +19,7 @@ EXTRAS = {
     "pyvista": ("vtk", "VTK output ([outputs] vtk = true; the VTK files of viscobem validate)"),
     "vtk": ("vtk", "VTK output ([outputs] vtk = true; the VTK files of viscobem validate)"),
     "pypardiso": ("fem", "the FEM reference's PARDISO solver (without it: SuperLU, slower)"),
-    "SurfaceTopography": ("topography", "reading measured topography files"),
+    "SurfaceTopography": ("topography", "reading measured topography files (scene kind measured)"),
     "psutil": ("bench", "the benchmarks' memory measurements"),
     "tamaas": ("tamaas", "the elastic reference of viscobem bench periodic"),
     "pyvisco": ("pyvisco", "viscobem bench materials (the comparison with pyvisco)"),

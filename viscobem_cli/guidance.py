@@ -65,6 +65,19 @@ def resolution_warnings(raw_surface, n, minimum):
     ]
 
 
+def form_advice(kind):
+    """What to change when the two friction forms differ, for a surface of scene ``kind``: only
+    generated rough surfaces have ``scales``."""
+    if kind == "self_affine":
+        return "Raise [surface] n (or lower [surface] scales) until they agree."
+    if kind == "measured":
+        return (
+            "Raise [surface] n (at most the scan's own pixels per side), and keep the default boundary "
+            "(boundary = 'isolated' and window = 'none' load the patch's edges)."
+        )
+    return "Raise [surface] n until they agree."
+
+
 def friction_form_warnings(
     curves, tolerance=FORM_TOLERANCE, advice="Raise [surface] n (or lower [surface] scales) until they agree."
 ):

@@ -7,8 +7,8 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
     viscobem scene [NAME]                     print a built-in scene (default: the template)
     viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem,
                                               fem_convergence, isolated, rubber_speeds, curve,
-                                              broadband, import, materials); writes only
-                                              under DIR
+                                              broadband, import, materials, measured); writes
+                                              only under DIR
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
@@ -283,11 +283,13 @@ def build_parser():
             "broadband",
             "import",
             "materials",
+            "measured",
         ],
         help="all (default: every solver, scaling, skipping), one detailed benchmark "
         "(fem_convergence: the FEM's observed orders in mesh size, domain size and time step), "
         "import (import time of bem against numpy + scipy), or materials (Prony fits "
-        "and master curves against pyvisco)",
+        "and master curves against pyvisco), or measured (boundary treatments of measured scans: "
+        "patches cut from known surfaces)",
     )
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")

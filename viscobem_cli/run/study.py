@@ -325,8 +325,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
             stages["point_" + name] = float(sum(spent))
     extras = _analyses(scene, record, recs, points_dir, stages)
     _write_record(out, scene, record, recs)  # the curves, for the plots
-    advice = "Raise [surface] n until they agree." if scene.kind in ("sphere", "cylinder") else None
-    record["warnings"] += guidance.friction_form_warnings(record["curves"], **({"advice": advice} if advice else {}))
+    record["warnings"] += guidance.friction_form_warnings(record["curves"], advice=guidance.form_advice(scene.kind))
     record["warnings"] += guidance.peak_warnings(record["curves"], scene.xi_time_source)
     record["files"] = _outputs(scene, record, recs, points_dir, out, extras, stages)
     if scene.surface.metadata.get("kind") == "measured":  # boundary choice and PSD of the measurement

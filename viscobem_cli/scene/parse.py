@@ -12,16 +12,18 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
                     dma_temperature_unit = "K" | "C"; dma_terms_per_decade = 3.0)
                  shift = { law = "wlf", C1, C2, reference_temperature (K) } | { law = "arrhenius",
                     activation_energy (J/mol), reference_temperature (K) }  (see viscobem_cli.scene.temperatures)
-    [surface]    kind = "self_affine" | "sinusoid" | "file" | "sphere" | "cylinder", length (m),
+    [surface]    kind = "self_affine" | "sinusoid" | "measured" | "file" | "sphere" | "cylinder", length (m),
                  n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
                               anisotropy, dim (1 or 2), realisations (K: seeds seed..seed+K-1)
                  sinusoid:    amplitude (m), wavelength (m), dim, direction
-                 file:        path (.npy/.txt/.csv, relative to the scene file), unit
+                 file:        one square periodic cell of plain heights: path (.npy/.txt/.csv, one
+                              row per x, relative to the scene file), unit
                  sphere, cylinder: radius (m), exact (default false: paraboloid); an isolated
                               indenter centred in a domain of side length (2-D map / 1-D profile)
-                 measured:    path (any instrument format), n, detrend, boundary, window, alpha,
-                              unit, scan_size, channel (viscobem_cli.scene.measured)
+                 measured:    a scan of part of a larger surface, any shape and format, periodic or
+                              not: path, n, detrend, boundary, window, alpha, patch, unit,
+                              scan_size, channel (viscobem_cli.scene.measured)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
                  material's longest creep time); temperatures = [...] (K; needs a shift law);
@@ -114,6 +116,7 @@ SCHEMA = {
         "alpha",
         "scan_size",
         "channel",
+        "patch",
     },  # kind = "measured"
     "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
     "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic", "method"},
@@ -234,10 +237,10 @@ def _surface(t, base):
     kind = t.get("kind")
     if kind not in SURFACE_KINDS:
         raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)}, got {kind!r}")
-    if kind == "measured":  # a measured topography file: viscobem_cli.scene.measured
+    if kind == "measured":  # a scan of part of a larger surface: viscobem_cli.scene.measured
         from . import measured
 
-        return (measured.surface(t, base),)
+        return measured.surfaces(t, base)
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
@@ -301,6 +304,11 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     )
     speeds, xi = scene_values.speeds(raw["loading"], tau, xi_length)
     warnings = guidance.resolution_warnings(raw["surface"], surface.n, MIN_POINTS_PER_WAVELENGTH)
+    if kind == "measured":  # the load is on the scanned patch; warnings on its boundary and cropping
+        from . import measured
+
+        loads = measured.patch_loads(surface, loads)
+        warnings += measured.warnings_of(realisations)
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
     run = scene_values.solver(solver)

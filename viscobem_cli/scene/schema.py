@@ -102,8 +102,9 @@ KEYS = [
         "string",
         "",
         None,
-        "self_affine | sinusoid | file | sphere | cylinder",
-        "Rigid surface type (required).",
+        "self_affine | sinusoid | measured | file | sphere | cylinder",
+        "Rigid surface type (required): measured is a scan of part of a larger surface (any shape and format, "
+        "periodic or not); file is one square periodic cell of plain heights.",
     ),
     Key(
         "surface",
@@ -112,9 +113,18 @@ KEYS = [
         "m",
         None,
         "> 0",
-        "Side of the periodic cell, or of the isolated indenter's domain (required).",
+        "Side of the periodic cell, or of the isolated indenter's domain (required; measured: from the file).",
     ),
-    Key("surface", "n", "integer", "", None, ">= 2", "Grid points per side (required except for kind = file)."),
+    Key(
+        "surface",
+        "n",
+        "integer",
+        "",
+        None,
+        ">= 2 (measured: >= 4)",
+        "Grid points per side (required except for kind = file; measured: per side of the solved patch, "
+        "default its own pixels, a mirrored cell has 2 n).",
+    ),
     Key("surface", "hurst", "number", "", None, "(0, 1]", "self_affine: Hurst exponent H."),
     Key(
         "surface",
@@ -151,8 +161,25 @@ KEYS = [
     Key("surface", "amplitude", "number", "m", None, "> 0", "sinusoid: amplitude."),
     Key("surface", "wavelength", "number", "m", "length", "(0, length]", "sinusoid: wavelength."),
     Key("surface", "direction", "string", "", "x", "x | y | xy", "sinusoid: orientation of the crests' normal."),
-    Key("surface", "path", "string", "", None, ".npy | .txt | .csv", "file: height map, relative to the scene file."),
-    Key("surface", "unit", "string", "", "m", "m | mm | um | nm", "file: unit of the heights in the file."),
+    Key(
+        "surface",
+        "path",
+        "string",
+        "",
+        None,
+        "file: .npy | .txt | .csv; measured: any SurfaceTopography format",
+        "file: square height map (one row per x); measured: the scan (text matrices one row per y); relative to "
+        "the scene file.",
+    ),
+    Key(
+        "surface",
+        "unit",
+        "string",
+        "",
+        "file: m",
+        "m | mm | um | nm (measured also pm, A)",
+        "file: unit of the heights; measured: unit of heights and scan_size, only if the file has none.",
+    ),
     Key("surface", "radius", "number", "m", None, "> 0", "sphere, cylinder: radius (required)."),
     Key(
         "surface",
@@ -171,7 +198,7 @@ KEYS = [
         "N (N/m for 1-D)",
         None,
         "> 0",
-        "Normal force; a list sweeps loads (required).",
+        "Normal force; a list sweeps loads (required; measured: on the scanned patch).",
     ),
     Key("loading", "speeds", "list", "m/s", None, ">= 0", "Sliding speeds (or xi)."),
     Key(
@@ -306,26 +333,28 @@ KEYS += [
         "string",
         "",
         "plane",
-        "none | mean | plane | curvature",
-        "measured: detrending of the topography.",
+        "plane | none | mean | curvature",
+        "measured: polynomial removed from the solved patch (the same default as bem.surfaces.from_scan).",
     ),
     Key(
         "surface",
         "boundary",
         "string",
         "",
-        "isolated",
-        "isolated | periodic",
-        "measured: the measured patch as an isolated contact or a periodic cell.",
+        "periodic",
+        "periodic | isolated",
+        "measured: the patch as a periodic cell (a patch of a larger surface) or as the whole loaded domain of an "
+        "isolated contact (a scan of a whole finite body; warned about otherwise).",
     ),
     Key(
         "surface",
         "window",
         "string",
         "",
-        "tukey",
-        "tukey | hann | mirror | none",
-        "measured, periodic: window that makes the patch periodic.",
+        "mirror (none for a scan the file declares periodic)",
+        "mirror | periodic_component | tukey | hann | none",
+        "measured, periodic: how the patch is made periodic; mirror tiles it with its mirror images (a cell of "
+        "twice its side holding it 4 times, with 4 times the load: the same pressure).",
     ),
     Key("surface", "alpha", "number", "", 0.25, "[0, 1]", "measured, tukey window: tapered fraction of each side."),
     Key(
@@ -338,6 +367,17 @@ KEYS += [
         "measured: extent along x, y, only if the file has no size.",
     ),
     Key("surface", "channel", "integer", "", 0, ">= 0", "measured: height channel of a multi-channel file."),
+    Key(
+        "surface",
+        "patch",
+        "string or list",
+        "m",
+        "centre",
+        "centre | cover | [x0, y0] | [x0, y0, side]",
+        "measured: the square of the scan that is solved (cells are square): the largest centred one (warned about "
+        "when it is not the whole scan), every square covering the scan (one realisation each), or one from an "
+        "origin.",
+    ),
 ]
 
 
