@@ -101,8 +101,9 @@ def sweep(
         write it to disk at once.
     keep : bool
         Return the results; ``False`` keeps no fields in memory (a callback stores them).
-    Other parameters as in :func:`bem.solve`; the warm start is skipped for
-    ``method="adaptive"`` (its mesh differs from the surface's grid).
+    rtol, maxiter, periodic, method, direction
+        As in :func:`bem.solve`; the warm start is skipped for ``method="adaptive"`` (its
+        mesh differs from the surface's grid).
 
     Returns
     -------

@@ -4,8 +4,11 @@ A page holds a marker comment where a generated block goes:
 
 - ``<!-- generated:scene-keys -->``: every scene key the parser accepts
   (``viscobem_cli.scene.SCHEMA``), with the type, unit, default, range and meaning from the
-  code's table of keys (``viscobem_cli.scene.schema.KEYS``); then the built-in scenes, read from
-  their TOML files.
+  code's table of keys (``viscobem_cli.scene.schema.KEYS``, each cell escaped so that Markdown
+  shows it as written); then the built-in scenes, read from their TOML files, each with its
+  measured run time and output size from ``docs/timings.json`` (``docs/timings.py``).
+- ``<!-- generated:extras -->``: the pip extras of ``pyproject.toml`` with what each adds
+  (``viscobem_cli.catalog.EXTRA_PURPOSE``).
 - ``<!-- generated:validation -->``: the latest validation report (``docs/validation/``:
   ``report.json`` rendered by ``validation.report``, else ``report.md``) and the quick set's
   stored baselines (``validation/baselines/quick.json``).
@@ -85,10 +88,19 @@ def _scene_keys():
         out.append("|---|---|---|---|---|---|")
         for key in _ordered(keys, info):
             d = info[key]  # the schema's key names come from the same table
-            cells = [f"`{key}`", d["type"], d["unit"], d["default"] or "none", d["range"], d["doc"]]
-            out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+            cells = [d["type"], d["unit"], d["default"] or "none", d["range"], d["doc"]]
+            out.append("| " + " | ".join([f"`{key}`"] + [table_cell(c) for c in cells]) + " |")
         out.append("")
     return "\n".join(out)
+
+
+_MARKUP = re.compile(r"([\\`*_{}\[\]>|#!])")
+
+
+def table_cell(text):
+    """Plain text as a Markdown table cell that renders as written: ``|`` would end the cell, a
+    trailing ``{...}`` would become HTML attributes (attr_list), ``*``/``_`` emphasis, ``<`` a tag."""
+    return _MARKUP.sub(r"\\\1", str(text)).replace("<", "&lt;")
 
 
 def _ordered(keys, info):
@@ -97,14 +109,48 @@ def _ordered(keys, info):
     return known + sorted(set(keys) - set(known))
 
 
+def _measured_runs():
+    """The recorded runs of docs/timings.json (see docs/timings.py), by key."""
+    path = DOCS / "timings.json"
+    return json.loads(path.read_text(encoding="utf-8")).get("runs", {}) if path.is_file() else {}
+
+
 def _builtin_scenes():
     from viscobem_cli import scene
 
+    sys.path.insert(0, str(DOCS))
+    try:
+        import timings
+    finally:
+        sys.path.remove(str(DOCS))
+    runs = _measured_runs()
     out = []
     for name in scene.builtin_scenes():
         text = (scene.SCENE_DIR / f"{name}.toml").read_text(encoding="utf-8")
-        out.append(f"### `{name}`\n\n`viscobem run {name}`\n\n```toml\n{text.rstrip()}\n```\n")
+        run = runs.get(f"run_{name}")
+        took = ""
+        if run:
+            took = f": [{timings.time_text(run['wall_s'])} on 2 cores](timings.md#run_{name})"
+            if run.get("output_bytes"):
+                took += f", [{timings.size_text(run['output_bytes'])}](timings.md#run_{name}) of output"
+        out.append(f"### `{name}`\n\n`viscobem run {name}`{took}\n\n```toml\n{text.rstrip()}\n```\n")
     return "\n".join(out)
+
+
+def _extras():
+    """The pip extras of pyproject.toml, each with what it adds (``viscobem_cli.catalog``)."""
+    from viscobem_cli.catalog import EXTRA_PURPOSE
+
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]
+    rows = ["| extra | install | what it adds |", "|---|---|---|"]
+    for name in extras:
+        rows.append(f'| `{name}` | `pip install ".[{name}]"` | {EXTRA_PURPOSE.get(name, "")} |')
+    return "\n".join(rows) + "\n"
 
 
 # --- JSON records ----------------------------------------------------------------------------
@@ -290,9 +336,10 @@ def _run_example(script, out_dir):
             [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
         ),
     )
-    run = subprocess.run(
+    out_dir.mkdir(parents=True)
+    run = subprocess.run(  # run from an empty folder, as a user who copied the script would
         [sys.executable, str(script), str(out_dir)],
-        cwd=EXAMPLES,
+        cwd=out_dir,
         env=env,
         capture_output=True,
         text=True,
@@ -386,6 +433,7 @@ def on_page_markdown(markdown, page, config, files):
             _scene_keys() + "\n## Built-in scenes\n\n" + _builtin_scenes()
         ),
         "<!-- generated:validation -->": _validation,
+        "<!-- generated:extras -->": _extras,
         "<!-- generated:benchmarks -->": _benchmarks,
         "<!-- generated:gallery -->": _gallery_markdown,
         "<!-- generated:seed-figures -->": lambda: _record(

@@ -12,9 +12,13 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
-and exits with status 2; so does a missing optional package (the line names the pip extra
-to install). A sweep with points that did not converge exits with 1, and so does a
-validation run in which any case misses a tolerance or a baseline.
+and exits with status 2. A missing optional package costs one line naming the pip extra that
+provides it, never a traceback: what a command was asked for explicitly (VTK in a scene, a Dask
+scheduler, a measured topography) stops it before any work, with status 2; what is on by
+default is skipped or replaced, and said so (``viscobem validate`` without pyvista writes every
+report but the VTK files; the FEM without pypardiso uses SuperLU). A sweep with points that did
+not converge exits with 1, and so does a validation run in which any case misses a tolerance or
+a baseline.
 """
 
 import argparse
@@ -23,7 +27,7 @@ from pathlib import Path
 
 from bem.errors import ConvergenceError, InputError
 
-from .catalog import builtin_scenes, install_hint, require, scene_path
+from .catalog import builtin_scenes, hint_for, missing, require, scene_path
 
 
 def _cmd_run(args):
@@ -116,9 +120,23 @@ def _cmd_bench(args):
     return 0
 
 
+def _optional_notes(args, names):
+    """Whether to write VTK, and one line for each default part that a missing extra drops."""
+    from validation.cases import CASES
+
+    vtk = not args.no_vtk
+    hint = missing("pyvista") if vtk else None
+    if hint:
+        print(f"  no VTK files: {hint}")
+        vtk = False
+    if any("fem" in CASES[n].solvers for n in names):
+        hint = missing("pypardiso")
+        if hint:
+            print(f"  the FEM solves with SuperLU: {hint}")
+    return vtk
+
+
 def _cmd_validate(args):
-    if not args.no_vtk:
-        require("pyvista")
     from validation import baselines
     from validation.report import write_reports
     from validation.runner import run_cases, select
@@ -135,7 +153,8 @@ def _cmd_validate(args):
             f"baseline {baseline_path} does not exist; pass --no-baseline or create it with --update-baselines"
         )
     print(f"viscobem validate: {len(names)} case(s), {'quick' if args.quick else 'full'} set; writing to {args.out}")
-    record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk, progress=not args.no_progress)
+    vtk = _optional_notes(args, names)
+    record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=vtk, progress=not args.no_progress)
     summary = record["summary"]
     if args.sensitivity:
         from validation.sensitivity import attach
@@ -315,8 +334,8 @@ def main(argv=None):
         where = f" {err.filename!r}" if getattr(err, "filename", None) else ""
         print(f"viscobem: error: cannot write{where}: {err.strerror or err}", file=sys.stderr)
         return 2
-    except ModuleNotFoundError as err:
-        hint = install_hint(err.name)
+    except ImportError as err:  # an optional package: one line naming its extra
+        hint = hint_for(err)
         if hint is None:
             raise
         print(f"viscobem: error: {hint}", file=sys.stderr)

@@ -248,8 +248,24 @@ def _vtk(scene, fields, out):
     from validation import vtk_io
 
     idx = sorted(fields)
+    settings = {
+        "rtol": scene.rtol,
+        "maxiter": scene.maxiter,
+        "periodic": scene.periodic,
+        "method": scene.method,
+        "direction_deg": math.degrees(scene.direction),
+        "grid": list(scene.surface.shape),
+        "xi_time_s": scene.xi_time,
+        "xi_length_m": scene.xi_length,
+    }
+    extra = vtk_io.provenance(
+        solver=f"bem.solve ({'periodic' if scene.periodic else 'isolated'} BEM, method={scene.method!r}), "
+        f"realisation 0 at load {scene.loads[0]:g}",
+        settings=settings,
+        material_given=scene.raw.get("material"),
+    )
     return vtk_io.write_sweep(
-        out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx], material=scene.material
+        out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx], material=scene.material, extra=extra
     )
 
 
@@ -383,6 +399,10 @@ def _fields_of_first(scene, recs, points_dir):
         if data is not None and "pressure" in data:
             fields[i] = SimpleNamespace(
                 friction=rec["friction"],
+                friction_eq6=rec["friction_eq6"],
+                residual=rec["residual"],
+                iterations=rec["iterations"],
+                success=rec["success"],
                 contact_fraction=rec["contact_fraction"],
                 speed=rec["speed"],
                 load=rec["load"],
