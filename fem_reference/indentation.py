@@ -23,7 +23,7 @@ from bem.errors import ConvergenceError, InputError
 from bem.materials.material import Material
 
 from .axisymmetric import AxisymmetricStepper, fixed_dofs_axisymmetric
-from .contact import solve_load_control
+from .contact import COMPLEMENTARITY_LIMIT, complementarity_residual, gap_scale, solve_load_control
 from .kinematics import quadrature_operators
 from .mesh import half_space_mesh
 from .steady import stress_and_dissipation
@@ -53,12 +53,15 @@ class IndentationResult:
     n_elements, n_unknowns, n_steps : int
     iterations : ndarray of int
         Active-set iterations per requested time.
+    contact_force : ndarray
+        Sum of the nodal contact forces per requested time (N); it equals ``load`` when the
+        contact carries the load it was given.
     timings : dict
         Wall time (s) of the whole run under ``total``.
     success, message : bool, str
         True only if every linear solve is within its limit (``linear_residual <=
-        linear_residual_limit``) and every step's
-        complementarity ``residual`` is below 1e-9.
+        linear_residual_limit``) and every step's complementarity ``residual`` is within
+        :data:`~fem_reference.contact.COMPLEMENTARITY_LIMIT`.
     linear_residual : float
         Relative residual of the linear solve (SuperLU or PARDISO) closest to its limit: the
         force balance against the load, ``||K u - f|| / ||f||``, the constraint rows against
@@ -67,7 +70,9 @@ class IndentationResult:
         Its limit: 1e-8, or ten times the round-off floor of the force balance where that is
         higher (:func:`~fem_reference.linsolve.residual_limit`).
     residual : float
-        Largest complementarity residual of the steps' active-set solves.
+        Largest complementarity residual over the steps, from each step's solution
+        (:func:`~fem_reference.contact.complementarity_residual`: gaps of the displaced surface in
+        and out of the active set, signs of the forces).
     solver : str
         Linear solver that ran.
     """
@@ -84,6 +89,7 @@ class IndentationResult:
     n_unknowns: int
     n_steps: int
     iterations: np.ndarray
+    contact_force: np.ndarray = None
     success: bool = False
     message: str = ""
     timings: dict = field(default_factory=dict)
@@ -213,7 +219,7 @@ def indentation(
     F[top.ydofs[cand], np.arange(rc.size)] = -1.0  # unit downward ring forces (N)
 
     grid = time_grid(t_out, material.creep_times, spd)
-    out = {k: [] for k in ("a", "d", "p", "it")}
+    out = {k: [] for k in ("a", "d", "p", "it", "f")}
     worst = 0.0
     U = stepper.unit_response(F)  # glassy response to unit ring forces
     w_unit = -U[top.ydofs]
@@ -229,7 +235,9 @@ def indentation(
         out_now = np.count_nonzero(t_out == t)  # the grid holds the requested times exactly
         p_now = stepper.pressure(F @ sol.lam) if vtk is not None and out_now else None
         stepper.commit(u_now)
-        worst = max(worst, sol.residual)
+        # from the solution itself: the gaps of the displaced surface, the forces' signs
+        gap_now = -u_now[top.ydofs[cand]] + rc**2 / (2 * R) - sol.d
+        worst = max(worst, complementarity_residual(sol.lam, gap_now, sol.active, P, gap_scale(sol.d, hc[sol.active])))
         active, t_prev = sol.active, t
         pres = _nodal_pressure(rc, sol.lam, top.weights[cand])
         if out_now:
@@ -243,14 +251,17 @@ def indentation(
                 out["d"].append(sol.d)
                 out["p"].append(float(pres.max()))
                 out["it"].append(sol.iterations)
+                out["f"].append(float(sol.lam.sum()))
                 if vtk is not None:
+                    _, stress, diss = stress_and_dissipation(ops, material, u_now, p_now, stepper.alpha)
                     snaps.append(
                         dict(
                             t=float(t),
                             u=u_now,
                             eps=stepper.eps,
                             alpha=list(stepper.alpha),
-                            stress=stress_and_dissipation(ops, material, u_now, p_now, stepper.alpha)[1],
+                            stress=stress,
+                            dissipation=diss,
                             pressure=pres,
                             approach=sol.d,
                         )
@@ -272,8 +283,9 @@ def indentation(
         n_unknowns=stepper.n_unknowns,
         n_steps=grid.size,
         iterations=np.array(out["it"]),
+        contact_force=np.array(out["f"]),
         timings={"total": time.perf_counter() - t_start},
-        success=stepper.residual <= stepper.residual_limit and worst <= 1e-9,
+        success=stepper.residual <= stepper.residual_limit and worst <= COMPLEMENTARITY_LIMIT,
         message=_message(stepper.residual, stepper.residual_limit, worst),
         linear_residual=float(stepper.residual),
         linear_residual_limit=float(stepper.residual_limit),
@@ -286,6 +298,6 @@ def _message(linear, limit, complementarity):
     problems = []
     if not linear <= limit:
         problems.append(f"linear solve residual {linear:.2e} > {limit:.1e}")
-    if not complementarity <= 1e-9:
-        problems.append(f"complementarity residual {complementarity:.2e} > 1e-9")
+    if not complementarity <= COMPLEMENTARITY_LIMIT:
+        problems.append(f"complementarity residual {complementarity:.2e} > {COMPLEMENTARITY_LIMIT:.0e}")
     return "; ".join(problems) if problems else "converged"

@@ -19,6 +19,10 @@ __all__ = ["factorize", "SOLVERS", "relative_residual", "residual_limit", "solve
 
 RESIDUAL_LIMIT = 1e-8  # largest accepted relative residual of a linear solve (see residual_limit)
 FLOOR_FACTOR = 10.0  # a solve may sit this far above the round-off floor of its force balance
+# iterative refinement stops once a step fails to halve the residual: it contracts by cond * eps per
+# step while it works, and at the floor set by the conditioning it only fluctuates (each step costs a
+# solve with every right-hand side: the flexibility's hundreds of columns)
+STALL = 0.5
 
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
@@ -31,6 +35,7 @@ class _SuperLU:
         # equilibration (row and column scaling) keeps the residual of the condensed
         # rubber systems at 2e-10 where the unscaled factorisation stalls at 7e-8
         self._lu = spla.splu(sp.csc_matrix(A), permc_spec="COLAMD", options={"Equil": True})
+        self.nnz = int(self._lu.L.nnz + self._lu.U.nnz)  # entries of the factors (fill-in included)
 
     def solve(self, b):
         return self._lu.solve(np.asarray(b, dtype=float))
@@ -49,12 +54,13 @@ class _Pardiso:
 
         self._solver = pypardiso.PyPardisoSolver()
         self._solver.set_matrix_type(11)  # real non-symmetric
-        for key, value in {1: 1, 2: 2, 8: 20, 10: 8, 11: 1, 13: 1}.items():
-            self._solver.set_iparm(key, value)  # 1-based iparm: METIS, refinement, matching
+        for key, value in {1: 1, 2: 2, 8: 20, 10: 8, 11: 1, 13: 1, 18: -1}.items():
+            self._solver.set_iparm(key, value)  # 1-based iparm: METIS, refinement, matching, report fill
         self._solver.set_statistical_info_off()
         self._A = sp.csr_matrix(A)
         self._A.sort_indices()
         self._solver.factorize(self._A)
+        self.nnz = int(self._solver.get_iparm(18))  # entries of the factors, as PARDISO reports them
 
     def solve(self, b):
         return self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
@@ -70,7 +76,8 @@ def pardiso_available():
 
 
 def factorize(A, solver="auto"):
-    """Factor the square sparse matrix ``A``; returns an object with ``solve(b)``.
+    """Factor the square sparse matrix ``A``; returns an object with ``solve(b)``, ``name`` and
+    ``nnz`` (the entries of the factors, fill-in included).
 
     Parameters
     ----------
@@ -148,8 +155,9 @@ def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
     """``x`` with ``factor.solve`` plus up to ``steps`` of iterative refinement.
 
     Refinement stops once the relative residual (:func:`relative_residual`, with
-    ``n_equilibrium`` force-balance rows) is below ``target``; near the floor set by the
-    conditioning it fluctuates, so the best iterate is kept. Returns ``(x, residual, limit)``:
+    ``n_equilibrium`` force-balance rows) is below ``target``, or once a step fails to halve it
+    (:data:`STALL`: near the floor set by the conditioning it only fluctuates); the best iterate
+    is kept. Returns ``(x, residual, limit)``:
     the residual of the returned ``x`` and the largest acceptable one (:func:`residual_limit`;
     :data:`RESIDUAL_LIMIT` without ``n_equilibrium``).
     """
@@ -161,8 +169,11 @@ def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
             break
         x = x + factor.solve(b - (A @ x).reshape(b.shape))
         res = relative_residual(A, x, b, n_equilibrium)
+        stalled = res > STALL * best_res  # at the round-off floor: more steps only fluctuate
         if res < best_res:
             best, best_res = x, res
+        if stalled:
+            break
     limit = RESIDUAL_LIMIT
     if n_equilibrium is not None and best_res > RESIDUAL_LIMIT:  # only then can the floor matter
         limit = residual_limit(A, best, b, n_equilibrium)

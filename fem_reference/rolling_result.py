@@ -44,13 +44,17 @@ class RollingResult:
         the element growth ratio outside the core.
     n_elements, n_unknowns, iterations : int
     residual : float
-        Complementarity residual of the active-set solve.
+        Complementarity residual of the solution (:func:`~fem_reference.contact.complementarity_residual`):
+        the gaps of the displaced surface from the final field solve, in the active set and out of it,
+        and the signs of the nodal forces.
     material : bem.Material
         The material actually used (after folding inactive Prony terms).
+    input_material : bem.Material
+        The material as given (before folding).
     success, message : bool, str
-        ``success`` is True only if the active set settled with a complementarity residual
-        below 1e-9 and every linear solve is within its limit (``linear_residual <=
-        linear_residual_limit``).
+        ``success`` is True only if the complementarity ``residual`` is within
+        :data:`~fem_reference.contact.COMPLEMENTARITY_LIMIT` and every linear solve is within its
+        limit (``linear_residual <= linear_residual_limit``).
     timings : dict
         Wall times (s) of the last mesh: ``assemble``, ``factor`` (their sum
         ``assemble_factor``), ``flexibility``, ``contact``, ``fields``; ``total`` over all
@@ -79,6 +83,20 @@ class RollingResult:
         Per kept term: viscous strains eliminated (True) or unknowns (False).
     peak_memory : float
         Peak resident memory of the process so far (MiB).
+    n_nonzeros, factor_nonzeros : int
+        Entries of the assembled system and of its factors (fill-in included; -1 when the solver does
+        not report it), last mesh.
+    thinnest_layer : float
+        The thinnest leading-edge layer ``V min(tau_k)`` over the terms kept (m; ``inf`` for an
+        elastic solid or at rest).
+    smallest_element : float
+        The smallest element along the flow (m).
+    peak_resolved : bool
+        ``thinnest_layer >= smallest_element``: the pressure's leading-edge layer spans at least one
+        element. Where it does not, the peak pressure is a value at an unresolved jump (``warnings``
+        says so) and should not be judged pointwise.
+    warnings : tuple of str
+        What the result cannot be trusted for (an unresolved leading-edge layer).
     """
 
     x: np.ndarray
@@ -116,3 +134,10 @@ class RollingResult:
     terms: dict = field(default_factory=dict)
     condensed: tuple = ()
     peak_memory: float = float("nan")
+    input_material: object = None
+    n_nonzeros: int = 0
+    factor_nonzeros: int = 0
+    thinnest_layer: float = float("inf")
+    smallest_element: float = float("nan")
+    peak_resolved: bool = True
+    warnings: tuple = ()

@@ -21,17 +21,20 @@ cylinder's profile ``h = -x^2/2R`` and the approach), ``contact`` (1 in contact)
 
 Field data on both (arrays of one value unless stated): ``speed`` (m/s), ``load`` (N/m),
 ``radius`` (m), ``E0``, ``E_inf`` (Pa), ``nu``, ``prony_moduli`` (Pa) and ``relaxation_times``
-(s, one entry per term), ``creep_times`` (s), ``dimensionless_speed`` (``V max(lambda_k) / a0``,
-retardation length over the relaxed Hertz half-width), ``friction``, ``approach`` (m),
-``units`` (a note) and the provenance of :func:`provenance`: ``viscobem_version``, ``solver``,
-``solver_settings`` (JSON: mesh, grading, element size, domain, linear solver) and
-``units_json`` (the unit of every array, JSON).
+(s, one entry per term), ``creep_times`` (s) of the material the solver used (inactive Prony terms
+folded), the same with the prefix ``input_`` for the material as given, ``dimensionless_speed``
+(``V max(lambda_k) / a0``, retardation length over the relaxed Hertz half-width), the friction in
+both forms, ``friction_dissipation`` (field dissipation over ``P V``, the form the validation harness
+compares) and ``friction_moment`` (``x_bar / R``, the moment of the nodal forces), ``friction`` (the
+dissipation form; the moment form at rest), ``approach`` (m), ``units`` (a note) and the provenance
+of :func:`provenance`: ``viscobem_version``, ``solver``, ``solver_settings`` (JSON: mesh, grading,
+element size, domain, linear solver) and ``units_json`` (the unit of every array, JSON).
 
 ``write_indentation(path, ...)`` writes the creep indentation as a ``.pvd`` time series (time in s) of
 ``.vtm`` files with the same names, in the ``(r, z)`` plane (x = r, y = z; the tensors' ``ZZ`` is the
 hoop component ``theta theta``): ``displacement``, ``stress``, ``strain``, ``von_mises``,
-``hydrostatic_pressure``, ``viscous_strain_tau=<tau>s`` in the block (the stress with the mixed
-solve's own pressure, :meth:`~fem_reference.axisymmetric.AxisymmetricStepper.pressure`);
+``hydrostatic_pressure``, ``viscous_strain_tau=<tau>s`` and ``dissipation`` (W/m^3) in the block (the
+stress with the mixed solve's own pressure, :meth:`~fem_reference.axisymmetric.AxisymmetricStepper.pressure`);
 ``pressure``, ``gap``, ``contact``, ``depression`` on the interface; field data ``time``, ``load``
 (N), ``radius``, the material and ``units``.
 """
@@ -172,15 +175,20 @@ def interface_points(result):
 def metadata(result):
     """Field data of a :class:`~fem_reference.RollingResult` (see module docstring)."""
     m = result.material
+    given = getattr(result, "input_material", None) or m
     a0 = hertz_half_width(m.E0, m.nu, result.radius, result.load)
     lam = float(np.max(m.creep_times)) if m.creep_times.size else 0.0
+    diss = result.friction_dissipation if result.speed > 0 else result.friction
     return dict(
         speed=[result.speed],
         load=[result.load],
         radius=[result.radius],
         **_material_data(m),
+        **_material_data(given, "input_"),
         dimensionless_speed=[result.speed * lam / a0],
-        friction=[result.friction],
+        friction=[diss],
+        friction_dissipation=[diss],
+        friction_moment=[result.friction],
         approach=[result.approach],
         units=[UNITS],
         **provenance(
@@ -265,6 +273,7 @@ def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
     _add_nodal(vol, stress, basis)
     for tau, a in zip(material.relaxation_times, snap["alpha"], strict=True):
         vol.cell_data[tau_name(tau)] = _cell_average(_axisymmetric_strain(a), weights, nel)
+    vol.cell_data["dissipation"] = _cell_average(np.asarray(snap["dissipation"], float), weights, nel)[:, 0]
     _name_components(vol)
     pts = np.zeros((r.size, 3))
     pts[:, 0] = r
@@ -282,7 +291,7 @@ def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
 
 def write_indentation(path, snapshots, ops, material, radius, load, r):
     """Write the indentation ``snapshots`` (dicts with ``t``, ``u``, ``eps``, ``alpha``, ``stress``
-    (axisymmetric Voigt, Pa), ``pressure`` at the candidate radii ``r``, ``approach``) as ``point_XXX.vtm`` files beside the
+    (axisymmetric Voigt, Pa), ``dissipation`` (W/m^3), ``pressure`` at the candidate radii ``r``, ``approach``) as ``point_XXX.vtm`` files beside the
     ``.pvd`` ``path``; returns the path."""
     from xml.sax.saxutils import quoteattr
 
@@ -312,8 +321,8 @@ def write_indentation(path, snapshots, ops, material, radius, load, r):
     return path
 
 
-def _material_data(m):
-    return dict(
+def _material_data(m, prefix=""):
+    data = dict(
         E0=[m.E0],
         E_inf=[m.E_inf],
         nu=[m.nu],
@@ -321,3 +330,4 @@ def _material_data(m):
         relaxation_times=np.asarray(m.relaxation_times, float),
         creep_times=np.asarray(m.creep_times, float),
     )
+    return {prefix + k: v for k, v in data.items()}

@@ -125,7 +125,9 @@ def _sensitivity_rows(record):
     perts = list(dict.fromkeys(e["perturbation"] for e in entries))
     rows = {}
     for e in entries:
-        if e["detected"]:
+        if e.get("outcome") == "error":
+            cell = ("RAISED (not a detection): " + ", ".join(e["by"]), "FAIL")
+        elif e["detected"]:
             cell = ("caught by " + ", ".join(e["by"]), "PASS")
         elif e["required"]:
             cell = ("MISSED", "FAIL")
@@ -159,7 +161,8 @@ def sensitivity_html(record):
     parts = [
         "<h2 id='sensitivity'>Sensitivity: deliberately wrong inputs</h2><p>Each case rerun with the "
         "solvers under test given one wrong input (references keep the true one). A cell names the checks "
-        "that failed; MISSED means the wrong input passed every check.</p><table><tr><th>case</th>"
+        "that failed; MISSED means the wrong input passed every check, RAISED that the case raised an exception "
+        "under it (its own outcome: no check measured the error).</p><table><tr><th>case</th>"
         "<th>solver</th>" + "".join(f"<th>{e(p)}</th>" for p in perts) + "</tr>"
     ]
     for (case, solver), cells in rows.items():

@@ -8,8 +8,10 @@ solver under test); ``by`` lists those checks' metrics. It is *required* when it
 solver's inputs: every such perturbation changes the physics the checks compare, so an
 undetected one means a tolerance too loose for the discretisation error it guards.
 
-Entries: ``{case, solver, perturbation, detected, by, required}``; a case that raises under a
-perturbation counts as detected by ``error``.
+Entries: ``{case, solver, perturbation, outcome, detected, by, required}`` with ``outcome`` one of
+``detected`` (a judged check failed), ``missed`` (every check passed) and ``error`` (the case raised
+under the perturbation: ``by`` holds the exception). An exception is its own outcome, not a
+detection: whatever the solver's error was, no check measured it.
 """
 
 from __future__ import annotations
@@ -39,16 +41,17 @@ def _case_entries(name, quick, progress):
         tamper = Tamper(pert, cache)
         try:
             res = case(quick=quick, vtk_dir=None, root=None, tamper=tamper)
-        except Exception as err:  # noqa: BLE001 -- a solver that breaks on a wrong input has been caught
-            log.info("case %s raised under %s: %s", name, pert.name, err)
+        except Exception as err:  # noqa: BLE001 -- reported as its own outcome, not as a detection
+            log.warning("case %s raised under %s: %s", name, pert.name, err)
             for solver in sorted(tamper.changed):
                 entries.append(
                     dict(
                         case=name,
                         solver=solver,
                         perturbation=pert.name,
-                        detected=True,
-                        by=[f"error: {type(err).__name__}"],
+                        outcome="error",
+                        detected=False,
+                        by=[f"{type(err).__name__}: {err}"],
                         required=True,
                     )
                 )
@@ -64,6 +67,7 @@ def _case_entries(name, quick, progress):
                     case=name,
                     solver=solver,
                     perturbation=pert.name,
+                    outcome="detected" if found else "missed",
                     detected=bool(found),
                     by=found,
                     required=solver in tamper.changed,
@@ -94,9 +98,15 @@ def run_sensitivity(names, *, quick, progress=True):
 
 
 def summary(entries):
-    """``(missed, n_required)``: the required perturbations no check caught, and how many there are."""
+    """``(missed, n_required)``: the required perturbations no check caught (those that raised
+    included: an exception is not a detection), and how many there are."""
     required = [e for e in entries if e["required"]]
     return [e for e in required if not e["detected"]], len(required)
+
+
+def outcome(entry):
+    """``detected``, ``missed`` or ``error`` (records written before the field existed: from ``detected``)."""
+    return entry.get("outcome") or ("detected" if entry["detected"] else "missed")
 
 
 def attach(record, names, *, quick, progress=True):
@@ -112,6 +122,13 @@ def print_summary(record):
     """Print the perturbations no check caught; returns 1 if there are any, else 0."""
     missed, n = summary(record["sensitivity"])
     for e in missed:
-        print(f"  UNDETECTED {e['case']}: {e['solver']} with {e['perturbation']} passes every check")
-    print(f"  sensitivity: {n - len(missed)}/{n} perturbations that change a solver's inputs detected")
+        if outcome(e) == "error":
+            print(f"  RAISED {e['case']}: {e['solver']} with {e['perturbation']}: {e['by'][0]} (not a detection)")
+        else:
+            print(f"  UNDETECTED {e['case']}: {e['solver']} with {e['perturbation']} passes every check")
+    errors = sum(outcome(e) == "error" for e in missed)
+    print(
+        f"  sensitivity: {n - len(missed)}/{n} perturbations that change a solver's inputs detected"
+        + (f"; {errors} raised instead (not counted as detected)" if errors else "")
+    )
     return 1 if missed else 0

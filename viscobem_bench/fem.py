@@ -145,7 +145,7 @@ def _rubber_case(terms, ratio, speed, resolution):
     from fem_reference import rolling_cylinder
 
     ref = _rubber_bem(terms, ratio, speed)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     r = rolling_cylinder(
         _rubber_material(terms, ratio),
         radius=0.02,
@@ -155,7 +155,7 @@ def _rubber_case(terms, ratio, speed, resolution):
         resolution=resolution,
         solver="splu",
     )
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     w = ref["width"]
     return {
         "terms": terms,
@@ -163,6 +163,10 @@ def _rubber_case(terms, ratio, speed, resolution):
         "speed": speed,
         "resolution": resolution,
         "unknowns": r.n_unknowns,
+        "nonzeros": r.n_nonzeros,
+        "factor_nonzeros": r.factor_nonzeros,
+        "cpu_s": cpu,
+        "peak_resolved": r.peak_resolved,
         "elements": r.n_elements,
         "passes": r.passes,
         "kept": len(r.terms["kept"]),

@@ -123,6 +123,21 @@ def test_interface_of_a_graded_mesh_whose_band_is_not_symmetric(tmp_path):
     assert contact_residual(r) < 1e-8
 
 
+def test_friction_in_both_forms_and_the_material_as_given(tmp_path):
+    """The metadata carry the friction in both forms (``friction`` is the dissipation form the harness
+    compares) and the material as given beside the folded one the solver used."""
+    pv = pytest.importorskip("pyvista")
+    given = Material.from_prony(E0=1e6, moduli=[1e6, 1e6, 1e6], times=[1e-12, 3e-3, 3e-2], nu=0.5)
+    r = rolling_cylinder(given, radius=0.01, load=100.0, speed=0.05, resolution=2, grading=2.0, vtk=tmp_path / "f.vtm")
+    assert r.material.moduli.size == 2 and r.input_material is given  # the 1e-12 s term folded
+    fd = pv.read(tmp_path / "f.vtm")["volume"].field_data
+    assert fd["friction_dissipation"][0] == r.friction_dissipation and fd["friction_moment"][0] == r.friction
+    assert fd["friction"][0] == r.friction_dissipation != r.friction
+    np.testing.assert_array_equal(fd["input_relaxation_times"], given.relaxation_times)
+    np.testing.assert_array_equal(fd["relaxation_times"], r.material.relaxation_times)
+    assert fd["input_E0"][0] == given.E0 and fd["E0"][0] == r.material.E0
+
+
 def test_vtu_of_the_block_alone(tmp_path):
     pv = pytest.importorskip("pyvista")
     m = Material.standard_linear_solid(E0=1e6, E_inf=3e6, relaxation_time=0.01, nu=0.5)
@@ -162,8 +177,11 @@ def test_indentation_pvd_time_series(tmp_path):
     fd = iface.field_data
     assert fd["time"][0] == pytest.approx(0.05) and fd["approach"][0] == pytest.approx(r.approach[-1])
     assert fd["load"][0] == 1.0 and fd["E_inf"][0] == m.E_inf and "N" in str(fd["units"][0])
-    for name in ("stress", "von_mises", "hydrostatic_pressure"):
+    for name in ("stress", "von_mises", "hydrostatic_pressure", "dissipation"):
         assert name in vol.cell_data.keys()
+    # creeping at t = 5 creep times: the dashpots still dissipate, never negatively
+    diss = vol.cell_data["dissipation"]
+    assert np.all(diss >= -1e-12 * diss.max()) and diss.max() > 0
     assert vol.GetCellData().GetArray("stress").GetComponentName(4) == "YY"
     assert np.allclose(vol.cell_data["hydrostatic_pressure"], -vol.cell_data["stress"][:, [0, 4, 8]].sum(axis=1) / 3)
     for k in range(len(times)):

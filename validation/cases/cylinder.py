@@ -140,7 +140,7 @@ def _self_checks(out, name, label, sol, tol, why):
     """FEM: energy balance, contact and linear residuals; BEM: the dissipation form of the
     friction against eq. 6 (the moment of the pressure on the profile's slope)."""
     if name == "fem":
-        fem_self_checks(out, label, sol, tol["balance"], why["balance"])
+        fem_self_checks(out, label, sol, tol["balance"], why["balance"], load=P)
     elif "friction_eq6" in tol:
         out.check(
             "friction_forms_rel_diff",
@@ -312,7 +312,7 @@ def run_prony(*, quick, vtk_dir, root, tamper):
         f = runs["fem"][fem_s.index(s)] if s in fem_s else None
         fem_ok = f is not None and out.converged("fem", label, f)
         if fem_ok:
-            fem_self_checks(out, label, f, cfg["tol"]["balance"], cfg["why"]["balance"])
+            fem_self_checks(out, label, f, cfg["tol"]["balance"], cfg["why"]["balance"], load=P)
         mu0 = low_speed_friction(material, radius=R, speed=V) if s <= cfg["asymptote_s"] else None
         if fem_ok and mu0 is not None:
             out.check(

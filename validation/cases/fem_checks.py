@@ -10,11 +10,14 @@ as the fields satisfy it, and the linear solve.
   complementarity residual with the gap taken from the final displacement field.
 - ``linear_solve_residual``: ``||K u - f|| / ||f||`` of the factorised solve, whichever solver ran (the
   constraint rows measured against their own terms, :func:`fem_reference.linsolve.relative_residual`).
+- ``contact_force_balance_rel_diff``: the sum of the nodal contact forces against the load the case
+  asked for (not the one the solver was given): a contact solved at another load and reported as this
+  one fails it.
 """
 
 from __future__ import annotations
 
-__all__ = ["fem_self_checks", "CONTACT_TOL", "LINEAR_TOL"]
+__all__ = ["fem_self_checks", "force_balance_check", "CONTACT_TOL", "LINEAR_TOL", "FORCE_TOL"]
 
 # The linear solve's error in the gap. Measured with SuperLU: 5e-11 to 2.7e-9 (27-34k unknowns,
 # E_inf/E0 = 3, s = 0.3 and 3, every sensitivity perturbation), 1.4e-8 (three Prony terms, grading 2,
@@ -31,8 +34,22 @@ LINEAR_WHY = (
 )
 
 
-def fem_self_checks(out, label, sol, balance_tol, balance_why, solver="fem"):
-    """Append the three self-checks of the FEM adapter output ``sol`` (see module docstring)."""
+# Load control makes the active-set solve carry sum(lam) = P as one of its equations: measured 1e-16 to
+# 4e-15 relative; a load error of 1e-9 is far below any the perturbations make (2 %).
+FORCE_TOL = 1e-9
+FORCE_WHY = "load control: sum of the nodal contact forces = load, one equation of the contact solve; measured <= 4e-15"
+
+
+def force_balance_check(out, label, force_sum, load, solver="fem"):
+    """Append ``contact_force_balance_rel_diff``: ``|sum(forces) - load| / load``, ``load`` the case's own."""
+    out.check("contact_force_balance_rel_diff", solver, label, abs(force_sum - load) / load, FORCE_TOL, FORCE_WHY)
+
+
+def fem_self_checks(out, label, sol, balance_tol, balance_why, solver="fem", load=None):
+    """Append the self-checks of the FEM adapter output ``sol`` (see module docstring); ``load`` is the
+    case's load (N/m), against which the contact forces are summed."""
+    if load is not None:
+        force_balance_check(out, label, sol["force_sum"], load, solver)
     if sol["power_moment"] > 0:
         out.check(
             "dissipation_balance_rel_diff",

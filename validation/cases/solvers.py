@@ -47,6 +47,19 @@ def cylinder_cell(material, radius, load, speed, cells):
     return n + n % 2, dx
 
 
+def thinnest_layer(material, speed):
+    """``V min(tau_k)`` (m): the thinnest leading-edge layer of the pressure (``inf`` elastic or at rest)."""
+    taus = np.asarray(material.relaxation_times)
+    return float(speed * taus.min()) if taus.size and speed > 0 else float("inf")
+
+
+def _layer(material, speed, size):
+    """``layer``, ``layer_cell`` and ``peak_resolved`` of an adapter output: the peak pressure is judged
+    pointwise only where the thinnest layer spans at least one cell or element ``size``."""
+    layer = thinnest_layer(material, speed)
+    return dict(layer=layer, layer_cell=float(size), peak_resolved=bool(layer >= size))
+
+
 def _failed(res, detail):
     """Adapter output of a solve that did not reach its tolerance: no fields to compare."""
     return dict(
@@ -107,6 +120,7 @@ def bem_periodic_cylinder(material, *, radius, load, speed, cells):
         surface=surface,
         origin=(float(x[0]), 0.0),
         detail=f"n = {n}, dx = {dx:.3e} m",
+        **_layer(material, speed, dx),
     )
 
 
@@ -127,9 +141,10 @@ def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None, **optio
     )
     friction = res.friction_dissipation if speed > 0 else res.friction
     t = res.timings
-    detail = f"{res.n_unknowns} unknowns, h = {res.element_size:.3e} m; " + ", ".join(
-        f"{k} {v:.2g} s" for k, v in t.items()
-    )
+    detail = (
+        f"{res.n_unknowns} unknowns, {res.n_nonzeros} entries, factor {res.factor_nonzeros}, "
+        f"h = {res.element_size:.3e} m; "
+    ) + ", ".join(f"{k} {v:.2g} s" for k, v in t.items())
     out = dict(
         success=bool(res.success),
         residual=float(res.residual),
@@ -145,6 +160,10 @@ def fem_cylinder(material, *, radius, load, speed, resolution, vtk=None, **optio
         contact_residual=contact_residual(res),
         linear_residual=_linear_residual(res),
         linear_residual_limit=getattr(res, "linear_residual_limit", None),
+        force_sum=float(np.sum(res.forces)),
+        layer=res.thinnest_layer,
+        layer_cell=res.smallest_element,
+        peak_resolved=bool(res.peak_resolved),
         power_fields=res.friction_dissipation * load * speed,
         power_moment=res.friction * load * speed,
         timings=dict(t),
@@ -237,6 +256,7 @@ def _isolated(surface, material, load, speed, method, dx, line, origin):
         field=res.pressure,
         origin=origin(x),
         detail=f"{method}, n = {n}, dx = {dx:.3e} m",
+        **_layer(material, speed, dx),
     )
 
 

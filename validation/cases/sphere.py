@@ -23,6 +23,7 @@ from validation.references.hunter import low_speed_friction
 
 from .base import Case, CaseOutput, Profile, Sweep
 from .cylinder import sls
+from .fem_checks import force_balance_check
 from .solvers import bem_isolated_sphere, bem_periodic_sphere
 from .sphere_settings import FULL_CREEP, FULL_SPHERE, QUICK_CREEP, QUICK_SPHERE, WHY, WHY_FEM
 from .vtk_out import write_bem_sweep
@@ -75,6 +76,7 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
     out.cost("fem", "t=0+, 1000 lambda", cost, f"{fem.n_unknowns} unknowns, h = {fem.element_size:.3e} m")
     t = cfg["tol"]["fem"]
     for i, (label, modulus) in enumerate((("glassy (t=0+)", material.E_inf), ("relaxed (t=1000 lambda)", material.E0))):
+        force_balance_check(out, label, fem.contact_force[i], P)
         hz = point_contact(modulus, material.nu, R, P)
         out.check(
             "contact_radius_error_elements",
@@ -231,6 +233,7 @@ def run_creep(*, quick, vtk_dir, root, tamper):
     t = cfg["tol"]
     for i, tt in enumerate(cfg["t"]):
         label = f"t={tt:g} lambda"
+        force_balance_check(out, label, fem.contact_force[i], P)
         out.check(
             "contact_radius_error_elements",
             "fem",

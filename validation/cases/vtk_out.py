@@ -20,6 +20,7 @@ __all__ = ["write_bem_sweep", "write_pvd_for", "PARAMETERS"]
 PARAMETERS = {
     "s": "s = V max(lambda_k) / a0, the dimensionless speed (a0: the relaxed Hertz contact half-width or radius)",
     "V": "V, the sliding speed (m/s)",
+    "fem V": "V, the sliding speed (m/s) of the FEM's points (a sweep of its own, on the FEM's material)",
     "xi": "xi = V max(lambda_k) / L, the dimensionless speed (L: the cell side)",
     "fraction": "the mean pressure as a fraction of the full-contact pressure",
     "index": "the index of the solve (no physical parameter)",

@@ -1,0 +1,95 @@
+"""The FEM's complementarity residual is computed from the solution (gaps of the displaced surface
+in and out of the active set, signs of the forces), so a wrong active set fails it and turns the
+results' ``success`` off. Before, the loop zeroed the active gaps and returned only when the set
+repeated, so the residual was 0 by construction and ``success`` could not fail on it."""
+
+import importlib
+
+import numpy as np
+import pytest
+
+from bem import Material
+from fem_reference import contact, indentation, rolling, rolling_cylinder
+from fem_reference.contact import COMPLEMENTARITY_LIMIT, ContactSolution, complementarity_residual, gap_scale
+
+R, P = 0.01, 100.0
+
+
+def _hertz_flexibility(n=41):
+    """A small symmetric flexibility (log kernel of a line load) and a parabolic profile."""
+    x = np.linspace(-2.0, 2.0, n)
+    d = np.abs(x[:, None] - x[None, :])
+    C = -np.log(d + 0.05) / np.pi + 2.0  # positive, decreasing with the distance
+    return x, C, -(x**2) / 2
+
+
+def test_residual_of_a_solution_is_round_off():
+    x, C, h = _hertz_flexibility()
+    sol = contact.solve_load_control(C, h, 1.0)
+    assert sol.residual < 1e-12
+    assert np.all(sol.lam[sol.active] > 0) and np.all(sol.gap[~sol.active] >= 0)
+
+
+@pytest.mark.parametrize("change", ["drop_edge", "add_outside"])
+def test_wrong_active_set_fails(change):
+    x, C, h = _hertz_flexibility()
+    good = contact.solve_load_control(C, h, 1.0)
+    act = good.active.copy()
+    idx = np.flatnonzero(act)
+    if change == "drop_edge":
+        act[idx[-1]] = False  # an edge node left out: it penetrates
+    else:
+        act[idx[-1] + 2] = True  # a node beyond the edge pulled into contact: tension or a gap
+        act[idx[-1] + 1] = True
+    k = np.flatnonzero(act)
+    S = np.block([[C[np.ix_(k, k)], -np.ones((k.size, 1))], [np.ones((1, k.size)), np.zeros((1, 1))]])
+    sol = np.linalg.solve(S, np.concatenate([h[k], [1.0]]))
+    lam = np.zeros(x.size)
+    lam[k] = sol[:-1]
+    gap = C @ lam - h - sol[-1]
+    res = complementarity_residual(lam, gap, act, 1.0, gap_scale(sol[-1], h[k]))
+    assert res > 1e3 * COMPLEMENTARITY_LIMIT
+
+
+def _wrong_set_solver(real):
+    """``solve_load_control`` that returns the converged solution with its leading edge node
+    dropped from the active set and the forces re-solved on that set (a stopped-too-early loop)."""
+
+    def solve(C, h, load, *, w0=None, active=None, maxiter=100):
+        good = real(C, h, load, w0=w0, active=active, maxiter=maxiter)
+        act = good.active.copy()
+        act[np.flatnonzero(act)[-1]] = False
+        k = np.flatnonzero(act)
+        w0v = np.zeros(h.size) if w0 is None else w0
+        S = np.block([[C[np.ix_(k, k)], -np.ones((k.size, 1))], [np.ones((1, k.size)), np.zeros((1, 1))]])
+        sol = np.linalg.solve(S, np.concatenate([h[k] - w0v[k], [load]]))
+        lam = np.zeros(h.size)
+        lam[k] = sol[:-1]
+        gap = C @ lam + w0v - h - sol[-1]
+        gap[k] = 0.0
+        return ContactSolution(lam, float(sol[-1]), gap, act, good.iterations, 0.0)
+
+    return solve
+
+
+def test_rolling_success_fails_on_a_wrong_active_set(monkeypatch):
+    m = Material.standard_linear_solid(E0=1e6, E_inf=3e6, relaxation_time=0.01, nu=0.5)
+    ok = rolling_cylinder(m, radius=R, load=P, speed=0.01, resolution=2, grading=2.0)
+    assert ok.success and ok.residual < COMPLEMENTARITY_LIMIT  # measured 1e-11
+    monkeypatch.setattr(rolling, "solve_load_control", _wrong_set_solver(contact.solve_load_control))
+    bad = rolling_cylinder(m, radius=R, load=P, speed=0.01, resolution=2, grading=2.0)
+    assert not bad.success and "complementarity" in bad.message
+    assert bad.residual > 1e3 * COMPLEMENTARITY_LIMIT
+
+
+def test_indentation_success_fails_on_a_wrong_active_set(monkeypatch):
+    ind_module = importlib.import_module("fem_reference.indentation")
+
+    m = Material.standard_linear_solid(E0=1e6, E_inf=3e6, creep_time=1.0, nu=0.5)
+    kw = dict(radius=R, load=1.0, times=[0.0, 1e4], resolution=2, steps_per_decade=1)
+    ok = indentation(m, **kw)
+    assert ok.success and ok.residual < COMPLEMENTARITY_LIMIT
+    assert np.allclose(ok.contact_force, 1.0, rtol=1e-12)
+    monkeypatch.setattr(ind_module, "solve_load_control", _wrong_set_solver(contact.solve_load_control))
+    bad = indentation(m, **kw)
+    assert not bad.success and bad.residual > 1e3 * COMPLEMENTARITY_LIMIT
