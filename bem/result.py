@@ -42,6 +42,9 @@ class SlidingResult:
     message : str
     wall_time : float
         Seconds spent in the solve.
+    attainable : float or None
+        When a solve stopped at its round-off floor (``rtol`` below what floating point allows
+        this problem), the lowest residual it reached: ask for at least this. Otherwise ``None``.
     """
 
     pressure: np.ndarray
@@ -60,6 +63,7 @@ class SlidingResult:
     success: bool
     message: str
     wall_time: float = 0.0
+    attainable: float | None = None
 
     def __repr__(self):
         """One line: the scalars and the fields' shape, never the arrays themselves."""

@@ -18,6 +18,7 @@ import numpy as np
 
 from . import sliding
 from .checks import check_positive, show
+from .contact.options import MAXITER, RTOL
 from .errors import ConvergenceError, InputError
 
 __all__ = ["FrictionCurve", "friction_curve", "sweep", "check_sweep"]
@@ -64,8 +65,8 @@ def sweep(
     *,
     speeds,
     load,
-    rtol=1e-8,
-    maxiter=400,
+    rtol=RTOL,
+    maxiter=MAXITER,
     warm_start=True,
     periodic=True,
     method="auto",
@@ -73,6 +74,7 @@ def sweep(
     on_point=None,
     keep=True,
     direction=0.0,
+    contact_options=None,
 ):
     """Solve every surface at every speed, in increasing speed, warm-starting each surface.
 
@@ -121,6 +123,7 @@ def sweep(
                     periodic=periodic,
                     method=method,
                     direction=direction,
+                    contact_options=contact_options,
                 )
             except ConvergenceError as err:
                 res, message = None, str(err)
@@ -160,14 +163,15 @@ def friction_curve(
     *,
     speeds,
     load,
-    rtol=1e-8,
-    maxiter=400,
+    rtol=RTOL,
+    maxiter=MAXITER,
     warm_start=True,
     progress=False,
     callback=None,
     periodic=True,
     method="auto",
     direction=0.0,
+    contact_options=None,
 ):
     """Friction against speed: solve at each speed, warm-starting from the neighbour.
 
@@ -183,9 +187,10 @@ def friction_curve(
         ``callback(index, speed, result_or_None, message)`` after each point (with a list of
         loads, ``index`` counts the points of all loads: ``load_index * len(speeds) + i``);
         a point that fails to converge is reported with ``None`` and the sweep goes on.
-    periodic, method, rtol, maxiter, direction
+    periodic, method, rtol, maxiter, direction, contact_options
         As in :func:`bem.solve` (``periodic=False``: isolated contact; ``direction``: sliding
-        direction, radians from +x). The warm start is skipped for ``method="adaptive"``.
+        direction, radians from +x; ``contact_options``: the contact solver's
+        :class:`~bem.contact.ContactOptions`). The warm start is skipped for ``method="adaptive"``.
 
     Returns
     -------
@@ -227,6 +232,7 @@ def friction_curve(
                 method=method,
                 on_point=on_point,
                 direction=direction,
+                contact_options=contact_options,
             )
             curves.append(_curve(speeds, results[0], messages[0], f_n))
     return curves if several else curves[0]

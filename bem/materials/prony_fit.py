@@ -23,10 +23,10 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import nnls
-from threadpoolctl import threadpool_limits
 
 from ..checks import check_array, check_positive
 from ..errors import InputError
+from ..parallel import blas_limit
 
 __all__ = ["FitReport", "fit_prony_series", "relative_errors", "solve_nnls"]
 
@@ -169,7 +169,7 @@ def refine_terms(w, e1, e2, E0, moduli, times, *, loss_floor=1e-4, bounds=None):
     if bounds is not None:
         lo[1 + n :], hi[1 + n :] = np.log(bounds[0]), np.log(bounds[1])
         p0[1 + n :] = np.clip(p0[1 + n :], lo[1 + n :] + 1e-9, hi[1 + n :] - 1e-9)
-    with threadpool_limits(1):  # small dense SVDs: threads only contend
+    with blas_limit():  # small dense SVDs (bem.parallel)
         sol = least_squares(
             residual,
             p0,

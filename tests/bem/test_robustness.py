@@ -77,9 +77,8 @@ def test_crawling_line_attempt_leaves_room_for_the_fallback():
     """The hardest case of the sweep at 128²: E_inf/E0 = 1e4, xi = 1, a few contact spots.
 
     Its line-preconditioned attempt creeps (steps of 1/16-1/64, the residual 6e2 -> 0.8 over
-    400 steps) without stalling, so it used to take all of maxiter and the solve failed. It
-    now gets half of maxiter (``LINES_MAXITER_SHARE``); the unpreconditioned attempt then
-    converges in about 72 steps. About 280 s here: the price of this case, not of the sweep.
+    400 steps) without stalling; it gets a share of maxiter
+    (``bem.contact.solver.LINES_MAXITER_SHARE``), and the unpreconditioned attempt then converges. About 280 s here: the price of this case, not of the sweep.
     """
     res = _check(_surface(2, 128), MATERIALS["sls_1e4"], 1.0, 1e-2)
     assert "after a first attempt of 200" in res.message
