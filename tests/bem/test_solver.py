@@ -315,6 +315,24 @@ def test_friction_curve_marks_failed_points_and_goes_on(hard):
     assert np.all(np.isnan(curve.friction)) and all("not converged" in msg for msg in curve.messages)
 
 
+def test_friction_curve_passes_the_contact_options_to_every_point(monkeypatch):
+    """``contact_options`` reaches the contact solver at every speed (and the default is
+    ``ContactOptions()``): the curve benchmark and users tune whole curves with it."""
+    from bem import sliding
+    from bem.contact import ContactOptions
+
+    seen, original = [], sliding.solve_contact
+    monkeypatch.setattr(sliding, "solve_contact", lambda *a, **kw: seen.append(kw["options"]) or original(*a, **kw))
+    s, m = _rough(128, 1, seed=2), make_seed()
+    speeds, load = np.array([1e-3, 1e-2, 0.1]) * L / 0.01, _load(s, m.E0)
+    options = ContactOptions(inner_eta=0.05, coarsen=False)
+    assert bem.friction_curve(s, m, speeds=speeds, load=load, contact_options=options).all_converged
+    assert len(seen) == 3 and all(o is options for o in seen)
+    seen.clear()
+    bem.friction_curve(s, m, speeds=speeds, load=load)
+    assert len(seen) == 3 and all(o == ContactOptions() for o in seen)
+
+
 @pytest.mark.slow
 def test_friction_forms_converge_together_on_a_rough_surface_2d():
     """One band-limited 2-D surface (16 scales) sampled on 64**2..256**2 points; bound -1 on
