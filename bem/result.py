@@ -52,6 +52,9 @@ class SlidingResult:
     warnings : tuple of str
         One plain sentence per finding (an estimated error above 5 %, friction forms that
         disagree, a solve that did not converge, ...), each saying what to change.
+    attainable : float or None
+        When a solve stopped at its round-off floor (``rtol`` below what floating point allows
+        this problem), the lowest residual it reached: ask for at least this. Otherwise ``None``.
     """
 
     pressure: np.ndarray
@@ -72,6 +75,7 @@ class SlidingResult:
     wall_time: float = 0.0
     error_estimate: Mapping = field(default_factory=lambda: not_estimated("not estimated"))
     warnings: tuple = ()
+    attainable: float | None = None
 
     @property
     def peak_pressure(self):

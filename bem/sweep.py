@@ -20,6 +20,7 @@ from . import sliding
 from .accuracy import QUANTITIES, Finding, gather
 from .accuracy.assess import check_estimate
 from .checks import check_positive, show
+from .contact.options import MAXITER, RTOL
 from .errors import ConvergenceError, InputError
 
 __all__ = ["FrictionCurve", "friction_curve", "sweep", "check_sweep"]
@@ -72,8 +73,8 @@ def sweep(
     *,
     speeds,
     load,
-    rtol=1e-8,
-    maxiter=400,
+    rtol=RTOL,
+    maxiter=MAXITER,
     warm_start=True,
     periodic=True,
     method="auto",
@@ -82,6 +83,7 @@ def sweep(
     keep=True,
     direction=0.0,
     error_estimate="indicators",
+    contact_options=None,
 ):
     """Solve every surface at every speed, in increasing speed, warm-starting each surface.
 
@@ -132,6 +134,7 @@ def sweep(
                     method=method,
                     direction=direction,
                     error_estimate=error_estimate,
+                    contact_options=contact_options,
                 )
             except ConvergenceError as err:
                 res, message = None, str(err)
@@ -171,8 +174,8 @@ def friction_curve(
     *,
     speeds,
     load,
-    rtol=1e-8,
-    maxiter=400,
+    rtol=RTOL,
+    maxiter=MAXITER,
     warm_start=True,
     progress=False,
     callback=None,
@@ -180,6 +183,7 @@ def friction_curve(
     method="auto",
     direction=0.0,
     error_estimate="indicators",
+    contact_options=None,
 ):
     """Friction against speed: solve at each speed, warm-starting from the neighbour.
 
@@ -195,10 +199,11 @@ def friction_curve(
         ``callback(index, speed, result_or_None, message)`` after each point (with a list of
         loads, ``index`` counts the points of all loads: ``load_index * len(speeds) + i``);
         a point that fails to converge is reported with ``None`` and the sweep goes on.
-    periodic, method, rtol, maxiter, direction, error_estimate
+    periodic, method, rtol, maxiter, direction, error_estimate, contact_options
         As in :func:`bem.solve` (``periodic=False``: isolated contact; ``direction``: sliding
         direction, radians from +x; ``error_estimate``: ``"indicators"``, ``"refined"`` or
-        ``None``). The warm start is skipped for ``method="adaptive"``.
+        ``None``; ``contact_options``: the contact solver's :class:`~bem.contact.ContactOptions`).
+        The warm start is skipped for ``method="adaptive"``.
 
     Returns
     -------
@@ -243,6 +248,7 @@ def friction_curve(
                 on_point=on_point,
                 direction=direction,
                 error_estimate=error_estimate,
+                contact_options=contact_options,
             )
             curves.append(_curve(speeds, results[0], messages[0], f_n))
     return curves if several else curves[0]

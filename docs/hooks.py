@@ -16,6 +16,9 @@ A page holds a marker comment where a generated block goes:
   (``docs/benchmarks/*.json`` and the benchmark package's ``results/*.json``).
 - TeX between ``$...$`` or ``$$...$$`` becomes MathML at build time, so formulas need no
   script and no network to display.
+- ``<!-- generated:solver-settings -->``: the solve defaults, every field of
+  ``bem.contact.ContactOptions`` and every named constant of the contact solver
+  (``bem/contact/*.py``), each with its value and the reason written under it in the code.
 - ``<!-- generated:gallery -->``: every ``examples/*.py``, run in a subprocess at build time,
   shown with its code, its printed output and its figure. Running them here keeps each
   figure true to the code beside it; a failing example fails the build.
@@ -426,6 +429,53 @@ def _defining_path(match):
     return f"::: {path}"
 
 
+# --- solver settings --------------------------------------------------------------------------
+
+
+def _documented_names(path, scope=None):
+    """``[(name, value source, docstring)]`` of the assignments in ``path`` (at module level, or in
+    the class ``scope``) that have a string literal right under them."""
+    import ast
+
+    tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    body = tree.body
+    if scope is not None:
+        body = next(n.body for n in tree.body if isinstance(n, ast.ClassDef) and n.name == scope)
+    out = []
+    for node, after in zip(body, body[1:]):
+        target = node.target if isinstance(node, ast.AnnAssign) else getattr(node, "targets", [None])[0]
+        doc = after.value.value if isinstance(after, ast.Expr) and isinstance(after.value, ast.Constant) else None
+        if isinstance(target, ast.Name) and isinstance(doc, str) and node.value is not None:
+            out.append((target.id, ast.get_source_segment(path.read_text(encoding="utf-8"), node.value), doc))
+    return out
+
+
+def _one_line(doc):
+    """A docstring on one table line: roles and double backquotes as plain code, pipes escaped."""
+    text = re.sub(r":\w+:`~?([^`]+)`", r"`\1`", " ".join(doc.split()))
+    return text.replace("``", "`").replace("|", "\\|")
+
+
+def _solver_settings():
+    """Tables of the solve defaults, the options a user may set, and the solver's constants."""
+    contact = ROOT / "bem" / "contact"
+    defaults = [(n, v, d) for n, v, d in _documented_names(contact / "options.py") if n in ("RTOL", "MAXITER")]
+    rows = ["| name | default | meaning |", "|---|---|---|"]
+    rows += [f"| `{n}` | `{v}` | {_one_line(d)} |" for n, v, d in defaults]
+    out = ["**Solve defaults** (`bem.contact.options`; `bem.solve`, `bem.friction_curve` and the scene's "
+           "`[solver]` table use them):", "", *rows, ""]
+    rows = ["| option | default | what it trades |", "|---|---|---|"]
+    rows += [f"| `{n}` | `{v}` | {_one_line(d)} |" for n, v, d in _documented_names(contact / "options.py", "ContactOptions")]
+    out += ["**`bem.contact.ContactOptions`**, what a user may set:", "", *rows, ""]
+    rows = ["| constant | value | module | reason |", "|---|---|---|---|"]
+    for path in sorted(contact.glob("*.py")):
+        for n, v, d in _documented_names(path):
+            if n.isupper() and n not in ("RTOL", "MAXITER"):
+                rows.append(f"| `{n}` | `{v}` | `bem.contact.{path.stem}` | {_one_line(d)} |")
+    out += ["**Constants of the contact solver**, each in the module that uses it:", "", *rows, ""]
+    return "\n".join(out)
+
+
 def on_page_markdown(markdown, page, config, files):
     markdown = _API.sub(_defining_path, markdown)
     blocks = {
@@ -436,6 +486,7 @@ def on_page_markdown(markdown, page, config, files):
         "<!-- generated:extras -->": _extras,
         "<!-- generated:benchmarks -->": _benchmarks,
         "<!-- generated:gallery -->": _gallery_markdown,
+        "<!-- generated:solver-settings -->": _solver_settings,
         "<!-- generated:seed-figures -->": lambda: _record(
             DOCS / "figures" / "seed_figures_summary.json", "Numbers behind the figures"
         ),

@@ -137,21 +137,11 @@ def _optional_notes(args, names):
 
 
 def _cmd_validate(args):
-    from validation import baselines
     from validation.report import write_reports
     from validation.runner import run_cases, select
 
     names = select(args.case or [])
-    if args.update_baselines and (not args.quick or args.case):
-        raise InputError(
-            "--update-baselines needs --quick and every case (no --case): the baseline file holds the whole quick set"
-        )
-    baseline_path = args.baseline or baselines.DEFAULT
-    compare_with = args.quick and not (args.update_baselines or args.no_baseline)
-    if compare_with and not Path(baseline_path).exists():
-        raise InputError(
-            f"baseline {baseline_path} does not exist; pass --no-baseline or create it with --update-baselines"
-        )
+    baseline_path, compare_with = _baseline_plan(args)
     print(f"viscobem validate: {len(names)} case(s), {'quick' if args.quick else 'full'} set; writing to {args.out}")
     vtk = _optional_notes(args, names)
     record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=vtk, progress=not args.no_progress)
@@ -162,8 +152,46 @@ def _cmd_validate(args):
         attach(record, names, quick=args.quick, progress=not args.no_progress)
     comparison = None
     if compare_with:
+        from validation import baselines
+
         comparison = baselines.compare(record, baseline_path)
     paths = write_reports(record, args.out, comparison, with_plots=not args.no_plots)
+    _print_cases(record)
+    status = 0 if not summary["failed"] else 1
+    if args.sensitivity:
+        from validation.sensitivity import print_summary
+
+        status = print_summary(record) or status
+    if comparison is not None:
+        status = _print_comparison(comparison, baseline_path) or status
+    if args.update_baselines:
+        _update_baselines(record, baseline_path, args.out)
+    print(
+        f"  {summary['passed']}/{summary['cases']} cases passed in {record['seconds']:.1f} s; "
+        f"reports: {', '.join(str(p) for p in paths)}"
+    )
+    return status
+
+
+def _baseline_plan(args):
+    """``(baseline path, whether to compare with it)``; bad combinations of flags are input errors."""
+    from validation import baselines
+
+    if args.update_baselines and (not args.quick or args.case):
+        raise InputError(
+            "--update-baselines needs --quick and every case (no --case): the baseline file holds the whole quick set"
+        )
+    baseline_path = args.baseline or baselines.DEFAULT
+    compare_with = args.quick and not (args.update_baselines or args.no_baseline)
+    if compare_with and not Path(baseline_path).exists():
+        raise InputError(
+            f"baseline {baseline_path} does not exist; pass --no-baseline or create it with --update-baselines"
+        )
+    return baseline_path, compare_with
+
+
+def _print_cases(record):
+    """One line per case, then the failed checks."""
     for name, case in record["cases"].items():
         judged = [k for k in case["checks"] if k["judged"]]
         print(
@@ -172,41 +200,39 @@ def _cmd_validate(args):
         )
         if case["status"] == "error":
             print(f"      {case['error']}")
-    for k in summary["failed_checks"]:
+    for k in record["summary"]["failed_checks"]:
         print(
             f"  FAIL {k['case']}: {k['solver']} {k['metric']} at {k['label']} = {k['value']:.3g} "
             f"> {k['tolerance']:.3g} ({k['why']})"
         )
-    status = 0 if not summary["failed"] else 1
-    if args.sensitivity:
-        from validation.sensitivity import print_summary
 
-        status = print_summary(record) or status
-    if comparison is not None:
-        for r in comparison["regressions"]:
-            print(
-                f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
-                f"(allowed +-{r['allowed']:.3g})"
-            )
-        if comparison["missing"]:
-            first = comparison["missing"][0]["key"]
-            print(
-                f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
-                f"regenerate with: viscobem validate --quick --update-baselines --out DIR"
-            )
-        print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
-        status = status or (0 if comparison["ok"] else 1)
-    if args.update_baselines:
-        if summary["failed"]:
-            print("  baselines NOT updated: some cases fail their tolerances")
-        else:
-            command = "viscobem validate --quick --update-baselines --out " + str(args.out)
-            print(f"  baselines written to {baselines.write(record, baseline_path, command)}")
-    print(
-        f"  {summary['passed']}/{summary['cases']} cases passed in {record['seconds']:.1f} s; "
-        f"reports: {', '.join(str(p) for p in paths)}"
-    )
-    return status
+
+def _print_comparison(comparison, baseline_path):
+    """The regressions against the baselines; returns the exit status they give (0 or 1)."""
+    for r in comparison["regressions"]:
+        print(
+            f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
+            f"(allowed +-{r['allowed']:.3g})"
+        )
+    if comparison["missing"]:
+        first = comparison["missing"][0]["key"]
+        print(
+            f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
+            f"regenerate with: viscobem validate --quick --update-baselines --out DIR"
+        )
+    print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
+    return 0 if comparison["ok"] else 1
+
+
+def _update_baselines(record, baseline_path, out):
+    """Write the quick set's baselines, unless a case fails its tolerances."""
+    from validation import baselines
+
+    if record["summary"]["failed"]:
+        print("  baselines NOT updated: some cases fail their tolerances")
+        return
+    command = "viscobem validate --quick --update-baselines --out " + str(out)
+    print(f"  baselines written to {baselines.write(record, baseline_path, command)}")
 
 
 def _version():

@@ -49,10 +49,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.optimize import least_squares, minimize_scalar
-from threadpoolctl import threadpool_limits
 
 from ..checks import check_array, check_positive
 from ..errors import InputError
+from ..parallel import blas_limit
 from .prony_fit import (
     FitReport,
     SeriesModel,
@@ -363,7 +363,7 @@ def _projected_fit(law, data):
         return np.concatenate([e1 / data.e1 - 1.0, (e2 - data.e2) / s2])
 
     p0 = np.clip(law.parameters, lo_hi[0] * (1 + 1e-9), None)
-    with threadpool_limits(1):
+    with blas_limit():  # small dense problems: BLAS threads as bem.parallel sets them (1 by default)
         sol = least_squares(residual, p0, bounds=lo_hi, x_scale="jac", diff_step=1e-6, max_nfev=60, xtol=1e-10)
     return law.with_parameters(sol.x)
 

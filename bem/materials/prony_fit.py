@@ -23,10 +23,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import nnls
-from threadpoolctl import threadpool_limits
 
 from ..checks import check_array, check_positive
 from ..errors import InputError
+from ..parallel import blas_limit
 from .coverage import PLATEAU_SLOPE, end_slopes
 
 __all__ = ["FitReport", "SeriesModel", "fit_prony_series", "relative_errors", "solve_nnls", "worst_points"]
@@ -275,8 +275,9 @@ def refine_terms(w, e1, e2, E0, moduli, times, *, loss_floor=1e-4, bounds=None, 
     p0[inside] = np.maximum(p0[inside], lo[inside] + 1e-9 * (1 + np.abs(lo[inside])))
     inside = np.isfinite(hi)
     p0[inside] = np.minimum(p0[inside], hi[inside] - 1e-9 * (1 + np.abs(hi[inside])))
-    # small dense SVDs: threads only contend; a trial step may overflow (an infinite cost, rejected)
-    with threadpool_limits(1), np.errstate(over="ignore", invalid="ignore"):
+    # small dense SVDs (BLAS threads as bem.parallel sets them); a trial step may overflow (an
+    # infinite cost, rejected)
+    with blas_limit(), np.errstate(over="ignore", invalid="ignore"):
         sol = least_squares(
             model.residual,
             p0,

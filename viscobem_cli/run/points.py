@@ -247,13 +247,9 @@ def load_fields(folder, rec, surface):
 
 
 def _pool_init():
+    """One thread per worker process for the FFTs and BLAS alike: the workers share the cores."""
     bem.set_threads(1)
-    try:
-        from threadpoolctl import threadpool_limits
-
-        threadpool_limits(1)
-    except ImportError:  # pragma: no cover - only a speed-up
-        pass
+    bem.set_blas_threads(1)
 
 
 def execute(tasks, *, workers=1, scheduler=None, on_point, poll):

@@ -39,7 +39,7 @@ from bem.sweep import check_sweep
 
 from .. import guidance
 from ..files import remove_stale_temporaries, write_atomic
-from . import analysis, records, temperatures
+from . import analysis, directions, records, temperatures
 from .points import STUDY_FIELDS, execute, load_fields, load_point, point_key, point_name
 
 __all__ = ["run_scene", "fold_material"]
@@ -276,13 +276,12 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     A folder holding finished points of the same study is resumed: those points are not
     solved again.
     """
+    options = dict(progress=progress, scheduler=scheduler, workers=workers)
     if len(scene.directions) > 1:  # a sweep over sliding directions: one study per direction
-        from .directions import run_sweep
-
-        return run_sweep(run_scene, scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
+        return _per_direction(scene, out_dir, options)
     check_sweep(scene.surface, scene.material, speeds=scene.speeds, loads=scene.loads, rtol=scene.rtol)
     if scene.temperatures:  # one sweep per temperature (viscobem_cli.scene.temperatures)
-        return temperatures.run(scene, out_dir, run_scene, progress=progress, scheduler=scheduler, workers=workers)
+        return _per_temperature(scene, out_dir, options)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)
@@ -342,6 +341,24 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     stages["total"] = time.perf_counter() - t_start
     _write_record(out, scene, record, recs)
     return record
+
+
+def _per_direction(scene, out_dir, options):
+    """One study per sliding direction (:mod:`viscobem_cli.run.directions`), each in its folder."""
+    out, started, records = Path(out_dir), time.perf_counter(), []
+    out.mkdir(parents=True, exist_ok=True)
+    for one, folder in directions.studies(scene):
+        records.append(run_scene(one, out / folder, **options))
+        directions.write_progress(scene, records, out)
+    return directions.finish(scene, records, out, started)
+
+
+def _per_temperature(scene, out_dir, options):
+    """One speed sweep per temperature (:mod:`viscobem_cli.run.temperatures`), each in its folder."""
+    out, started = Path(out_dir), time.perf_counter()
+    out.mkdir(parents=True, exist_ok=True)
+    records = [run_scene(sub, out / folder, **options) for sub, folder in temperatures.studies(scene)]
+    return temperatures.combine(scene, records, out, started)
 
 
 def _tasks(scene, material, todo, points_dir, workers, scheduler, keep):

@@ -46,6 +46,7 @@ from pathlib import Path
 import numpy as np
 
 from bem import Material, surfaces
+from bem.contact.options import MAXITER, RTOL
 from bem.errors import InputError
 
 from .. import guidance
@@ -153,8 +154,8 @@ class Scene:
     speeds: np.ndarray
     xi: np.ndarray
     xi_time: float
-    rtol: float = 1e-8
-    maxiter: int = 100
+    rtol: float = RTOL
+    maxiter: int = MAXITER
     warm_start: bool = True
     periodic: bool = True
     method: str = "auto"

@@ -11,7 +11,9 @@ it, ``KEYS.append(Key(...))`` at import time works too) and read it in the parse
 
 from dataclasses import dataclass
 
-__all__ = ["Key", "KEYS", "SECTIONS", "keys_of", "names_of"]
+from bem.contact.options import MAXITER, RTOL
+
+__all__ = ["Key", "KEYS", "SECTIONS", "default", "keys_of", "names_of"]
 
 
 @dataclass(frozen=True)
@@ -223,8 +225,8 @@ KEYS = [
         "loading", "xi_time", "number", "s", "the longest creep time (1 s if elastic)", "> 0", "tau in xi = v tau / l."
     ),
     # [solver]
-    Key("solver", "rtol", "number", "", 1e-8, "(0, 1)", "Tolerance of the contact solver."),
-    Key("solver", "maxiter", "integer", "", 400, ">= 1", "Maximum active-set iterations per point."),
+    Key("solver", "rtol", "number", "", RTOL, "(0, 1)", "Tolerance of the contact solver."),
+    Key("solver", "maxiter", "integer", "", MAXITER, ">= 1", "Maximum active-set iterations per point."),
     Key("solver", "warm_start", "boolean", "", True, "true | false", "Start each speed from its neighbour."),
     Key("solver", "workers", "integer", "", 1, ">= 1", "Processes solving chunks of speeds in parallel."),
     Key("solver", "chunk", "integer", "", 0, ">= 0", "Speeds per task (0: split evenly over the workers)."),
@@ -427,3 +429,11 @@ def names_of(section):
     """The valid key names of ``section``; the top level also lists the sections."""
     names = {k.name for k in keys_of(section)}
     return names | set(SECTIONS) if section == "" else names
+
+
+def default(section, name):
+    """The default of the key ``name`` of ``section`` (the one source the parser reads)."""
+    for k in keys_of(section):
+        if k.name == name:
+            return k.default
+    raise KeyError(f"[{section}] {name} is not a scene key")
