@@ -17,8 +17,8 @@ import numpy as np
 import scipy.fft as sfft
 from scipy.interpolate import CubicSpline
 
-from ..contact.start import prolong
 from ..errors import ConvergenceError, InputError
+from ..halfspace.periodic import PeriodicHalfSpace
 from .estimate import QUANTITIES, ErrorEstimate
 
 __all__ = ["refine_surface", "refined_estimate"]
@@ -73,7 +73,7 @@ def _prolonged(pressure, periodic):
     """A first iterate on the finer grid: periodic linear interpolation (fine point ``2i`` is coarse
     point ``i``), or each element's pressure on its ``2**ndim`` children (isolated domains)."""
     if periodic:
-        return prolong(pressure)
+        return PeriodicHalfSpace.prolong(pressure)
     fine = pressure
     for axis in range(pressure.ndim):
         fine = np.repeat(fine, 2, axis=axis)
