@@ -49,6 +49,8 @@ _LAZY = {
     "set_threads": ("bem.parallel", "set_threads"),
     "get_threads": ("bem.parallel", "get_threads"),
     "use_threads": ("bem.parallel", "use_threads"),
+    "set_blas_threads": ("bem.parallel", "set_blas_threads"),
+    "get_blas_threads": ("bem.parallel", "get_blas_threads"),
 }
 
 # public module names that live in a subpackage: ``import bem.temperature`` gives the module itself

@@ -33,11 +33,10 @@ import math
 import numpy as np
 
 from . import fft
-from .checks import check_positive
 from .errors import InputError
-from .halfspace.directed import DirectedIsolatedHalfSpace, DirectedPeriodicHalfSpace, quarter_turns, unit_vector
+from .halfspace.directed import DirectedPeriodicHalfSpace, quarter_turns, unit_vector
 
-__all__ = ["directed_operator", "eq6", "normalize", "plan", "turn_array", "turn_back", "turn_surface"]
+__all__ = ["eq6", "normalize", "plan", "turn_array", "turn_back", "turn_surface"]
 
 
 def normalize(direction, ndim):
@@ -107,22 +106,3 @@ def plan(direction, ndim, periodic=True, method="auto"):
             f"kernels shift along x only; use method='uniform' for oblique directions), got {direction!r}"
         )
     return theta, turns
-
-
-_CACHE = {}
-
-
-def directed_operator(surface, material, speed, direction, periodic=True):
-    """The (cached, up to 4) oblique operator of this grid, material, speed and direction."""
-    speed = check_positive("speed", speed, allow_zero=True)
-    key = (surface.shape, surface.length, id(material), bool(periodic), float(speed), float(direction))
-    op = _CACHE.get(key)
-    if op is None or op.material is not material:
-        if periodic:
-            op = DirectedPeriodicHalfSpace(surface.shape, surface.length, material, speed, direction)
-        else:
-            op = DirectedIsolatedHalfSpace(surface.shape, surface.length, material, speed, direction)
-        if len(_CACHE) >= 4:
-            _CACHE.pop(next(iter(_CACHE)))
-        _CACHE[key] = op
-    return op

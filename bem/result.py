@@ -1,8 +1,11 @@
 """The result of one steady sliding solve, :class:`SlidingResult`, shared by every solver."""
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 import numpy as np
+
+from .accuracy.estimate import not_estimated
 
 __all__ = ["SlidingResult"]
 
@@ -42,6 +45,16 @@ class SlidingResult:
     message : str
     wall_time : float
         Seconds spent in the solve.
+    error_estimate : bem.accuracy.ErrorEstimate
+        Estimated relative discretisation error of ``friction``, ``contact_fraction`` and
+        ``peak_pressure`` (a mapping; ``None`` where no estimate exists, with the reason in
+        ``error_estimate.reasons``), see :mod:`bem.accuracy` and docs/theory.md §13.
+    warnings : tuple of str
+        One plain sentence per finding (an estimated error above 5 %, friction forms that
+        disagree, a solve that did not converge, ...), each saying what to change.
+    attainable : float or None
+        When a solve stopped at its round-off floor (``rtol`` below what floating point allows
+        this problem), the lowest residual it reached: ask for at least this. Otherwise ``None``.
     """
 
     pressure: np.ndarray
@@ -60,6 +73,14 @@ class SlidingResult:
     success: bool
     message: str
     wall_time: float = 0.0
+    error_estimate: Mapping = field(default_factory=lambda: not_estimated("not estimated"))
+    warnings: tuple = ()
+    attainable: float | None = None
+
+    @property
+    def peak_pressure(self):
+        """Largest pressure (Pa) on the grid."""
+        return float(np.max(self.pressure))
 
     def __repr__(self):
         """One line: the scalars and the fields' shape, never the arrays themselves."""

@@ -27,21 +27,19 @@ import numpy as np
 
 from . import direction as sliding_direction
 from . import fft
+from .accuracy.assess import assess, check_estimate
 from .checks import check_array, check_int, check_keywords, check_positive, show
 from .contact import ContactOptions, solve_contact
+from .contact.options import MAXITER, RTOL
 from .errors import ConvergenceError, InputError
-from .halfspace.isolated import IsolatedHalfSpace
-from .halfspace.periodic import PeriodicHalfSpace
+from .halfspace.cache import clear_operator_cache, operator_for
 from .materials.material import Material
 from .result import SlidingResult
 from .surfaces.surface import Surface
 
-__all__ = ["SlidingResult", "solve"]
+__all__ = ["SlidingResult", "clear_operator_cache", "operator_for", "solve"]
 
 log = logging.getLogger(__name__)
-
-_CACHE_SIZE = 4
-_operators = {}
 
 
 def _as_surface(surface):
@@ -52,30 +50,6 @@ def _as_surface(surface):
     raise InputError(
         f"surface must be a bem.surfaces.Surface (or have .heights and .length), got {type(surface).__name__}"
     )
-
-
-def _material_key(material):
-    return (material.E0, material.nu, material.moduli.tobytes(), material.relaxation_times.tobytes())
-
-
-def operator_for(surface, material, speed, periodic=True):
-    """The (cached) response operator of this grid, material and speed: periodic cell or
-    isolated domain (:class:`~bem.halfspace.isolated.IsolatedHalfSpace`)."""
-    key = (bool(periodic), surface.shape, surface.length, _material_key(material), float(speed))
-    op = _operators.get(key)
-    if op is None:
-        kind = PeriodicHalfSpace if periodic else IsolatedHalfSpace
-        op = kind(surface.shape, surface.length, material, speed)
-        if len(_operators) >= _CACHE_SIZE:
-            _operators.pop(next(iter(_operators)))
-        _operators[key] = op
-    return op
-
-
-def clear_operator_cache():
-    """Forget the response operators :func:`operator_for` keeps (the last few grids, materials and
-    speeds), e.g. to time an operator's construction or to free its memory."""
-    _operators.clear()
 
 
 def check_inputs(surface, material, speed, load, approach, rtol):
@@ -115,30 +89,9 @@ _SOLVE_KEYWORDS = (
     "raise_on_failure",
     "contact_options",
     "direction",
+    "error_estimate",
 )
 _PERIODIC_METHODS = ("auto", "active-set")
-
-
-def _choose_isolated_method(surface, material, *, speed, load, rtol):
-    """The isolated-contact method that ``method="auto"`` selects: ``"uniform"`` or ``"adaptive"``.
-
-    Always the uniform DC-FFT grid, the faster one in ``viscobem_bench/isolated.py`` (tables:
-    ``viscobem_bench/results/isolated_benchmark.json`` and ``..._xwide.json`` with their commits,
-    dates and machine load, 2 shared cores at load 6-8, bem/ frozen for each run; figures
-    ``isolated_pareto*.png``). Problems: rolling cylinder vs Hunter and sliding sphere vs a
-    Richardson-extrapolated reference, each at ``V lambda / a0 = 0.3, 1, 5``, plus the sphere
-    on domains 12 and 24 contact radii wide; error = max of the friction and peak-pressure
-    errors. At equal fine grid both reach the same peak-pressure error (the same collocation
-    inside the contact) and the uniform grid is faster or equal everywhere (adaptive/uniform
-    time: cylinder 0.94-171, sphere 3-27, wide domains 1.0-6.6). At equal error the uniform
-    grid is faster in 55 of the 65 (problem, tolerance 1e-1..1e-5) cells reached; of the
-    others, 7 are the fast cylinder at 128 cells where both take 0.05 s (3 ms apart, timing
-    noise) and 3 are wide sphere domains, within noise or owed to the adaptive solver's
-    friction evaluation (its slope-matrix dissipation form converges faster), not its mesh.
-    Nothing here depends on ``speed``, ``load``, ``rtol`` or the material; the arguments are
-    kept for a future rule.
-    """
-    return "uniform"
 
 
 def solve(
@@ -150,12 +103,13 @@ def solve(
     approach=None,
     periodic=True,
     method="auto",
-    rtol=1e-8,
-    maxiter=400,
+    rtol=RTOL,
+    maxiter=MAXITER,
     initial=None,
     raise_on_failure=True,
     contact_options=None,
     direction=0.0,
+    error_estimate="indicators",
     **adaptive_options,
 ):
     """Steady sliding of a rigid surface over a viscoelastic half-space.
@@ -180,7 +134,8 @@ def solve(
         Periodic cells: ``"auto"`` or ``"active-set"`` (the same primal–dual active-set
         solver with CG (elastic) or GMRES (viscoelastic) inner solves). Isolated contacts:
         ``"uniform"`` (DC-FFT on the uniform grid), ``"adaptive"`` (non-uniform mesh,
-        :func:`bem.halfspace.adaptive.solve_adaptive`, given ``adaptive_options``) or ``"auto"``.
+        :func:`bem.halfspace.adaptive.solve_adaptive`, given ``adaptive_options``) or ``"auto"``,
+        the uniform grid (as fast or faster at equal error in ``viscobem bench isolated``).
     rtol : float
         Tolerance on the complementarity residual (see :mod:`bem.contact`).
     maxiter : int
@@ -196,10 +151,17 @@ def solve(
         Sliding direction (radians from ``+x`` toward ``+y``; default 0), see
         :mod:`bem.direction`: ``speed`` is along it, ``friction`` opposes it, fields stay on the
         surface's grid. 1-D profiles: 0 or pi only.
+    error_estimate : {"indicators", "refined", None}
+        How ``result.error_estimate`` (the relative discretisation error of ``friction``,
+        ``contact_fraction`` and ``peak_pressure``) is obtained, see :mod:`bem.accuracy`:
+        ``"indicators"`` from the solution itself (default; a few FFTs), ``"refined"`` by solving
+        the same surface content on the grid with twice the points per axis (the cost of that
+        solve), ``None`` for no estimate and no warnings.
 
     Returns
     -------
     SlidingResult
+        With ``error_estimate`` and ``warnings`` (plain sentences saying what to change).
 
     Raises
     ------
@@ -224,25 +186,42 @@ def solve(
     """
     check_keywords("solve", adaptive_options, ADAPTIVE_OPTIONS + _SOLVE_KEYWORDS)
     surface, speed, load, approach, rtol = check_inputs(surface, material, speed, load, approach, rtol)
+    check_estimate(error_estimate)
     # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
     theta, turns = sliding_direction.plan(direction, surface.ndim, periodic, method)
+    common = dict(speed=speed, load=load, approach=approach, periodic=periodic, method=method, rtol=rtol)
+    common.update(maxiter=maxiter, raise_on_failure=raise_on_failure, contact_options=contact_options)
     if turns:
         return _solve_turned(
-            surface,
-            material,
-            turns,
-            speed=speed,
-            load=load,
-            approach=approach,
-            periodic=periodic,
-            method=method,
-            rtol=rtol,
-            maxiter=maxiter,
-            initial=initial,
-            raise_on_failure=raise_on_failure,
-            contact_options=contact_options,
-            **adaptive_options,
+            surface, material, turns, initial=initial, error_estimate=error_estimate, **common, **adaptive_options
         )
+    method = _check_method(periodic, method, adaptive_options)
+    if method == "adaptive":
+        return _solve_adaptive(surface, material, common, adaptive_options, error_estimate)
+    maxiter = check_int("maxiter", maxiter, 1)
+    _check_uniform(surface, periodic, approach, initial)
+    t0 = time.perf_counter()
+    op = operator_for(surface, material, speed, periodic, theta)
+    sol = solve_contact(
+        op,
+        surface.heights,
+        mean_pressure=None if load is None else load / op.area,
+        approach=approach,
+        rtol=rtol,
+        maxiter=maxiter,
+        initial=initial,
+        raise_on_failure=False,
+        options=contact_options or ContactOptions(),
+    )
+    result = _result(op, surface, speed, sol, periodic, time.perf_counter() - t0)
+    log.info("speed %.3e m/s: %s", speed, sol.message)
+    rerun = dict(speed=speed, load=load, approach=approach, periodic=periodic, method=method, rtol=rtol)
+    rerun.update(maxiter=maxiter, contact_options=contact_options, direction=theta, warm=True)
+    return _assessed(result, surface, material, error_estimate, raise_on_failure, rerun, theta=theta)
+
+
+def _check_method(periodic, method, adaptive_options):
+    """``method``, checked against ``periodic`` and the adaptive solver's options."""
     if not isinstance(periodic, (bool, np.bool_)):
         raise InputError(f"periodic must be True (periodic cell) or False (isolated contact), got {show(periodic)}")
     methods = _PERIODIC_METHODS if periodic else _ISOLATED_METHODS
@@ -257,27 +236,30 @@ def solve(
             f"{names} {'is an option' if len(adaptive_options) == 1 else 'are options'} of "
             f"method='adaptive' (isolated contacts) only, got method={method!r}"
         )
-    if not periodic and method == "auto":
-        method = _choose_isolated_method(surface, material, speed=speed, load=load, rtol=rtol)
-    if method == "adaptive":
-        if load is None:
-            raise InputError(
-                "approach (displacement control) is not available with method='adaptive'; "
-                "give load (N, or N/m for profiles)"
-            )
-        from .halfspace.adaptive.solver import solve_adaptive
+    return method
 
-        return solve_adaptive(
-            surface,
-            material,
-            speed=speed,
-            load=load,
-            rtol=rtol,
-            maxiter=maxiter,
-            raise_on_failure=raise_on_failure,
-            **adaptive_options,
+
+def _solve_adaptive(surface, material, common, adaptive_options, error_estimate):
+    """``method="adaptive"``: :func:`bem.halfspace.adaptive.solve_adaptive` (load control only),
+    with its error estimate and warnings (:func:`_assessed`)."""
+    if common["load"] is None:
+        raise InputError(
+            "approach (displacement control) is not available with method='adaptive'; "
+            "give load (N, or N/m for profiles)"
         )
-    maxiter = check_int("maxiter", maxiter, 1)
+    from .halfspace.adaptive.solver import solve_adaptive
+
+    keep = ("speed", "load", "rtol", "maxiter")
+    result = solve_adaptive(
+        surface, material, **{k: common[k] for k in keep}, raise_on_failure=False, **adaptive_options
+    )
+    finer = {**adaptive_options, "levels": len(result.meshes)}  # the same coarse mesh, one level more
+    rerun = dict(periodic=False, method="adaptive", **{k: common[k] for k in keep}, **finer)
+    return _assessed(result, surface, material, error_estimate, common["raise_on_failure"], rerun, theta=0.0)
+
+
+def _check_uniform(surface, periodic, approach, initial):
+    """The warm start's shape, and on periodic cells an approach below full contact."""
     if initial is not None:
         initial = check_array("initial", initial)
         if initial.shape != surface.shape:
@@ -289,31 +271,18 @@ def solve(
                 f"approach must be in (0, {show(limit)}) m: at max(h) - mean(h) the cell is in full "
                 f"contact and the load is unbounded (zero-mean displacement), got {show(approach)}"
             )
-    t0 = time.perf_counter()
-    if theta == 0.0:
-        op = operator_for(surface, material, speed, periodic)
-    else:
-        op = sliding_direction.directed_operator(surface, material, speed, theta, periodic)
-    area = op.area
-    sol = solve_contact(
-        op,
-        surface.heights,
-        mean_pressure=None if load is None else load / area,
-        approach=approach,
-        rtol=rtol,
-        maxiter=maxiter,
-        initial=initial,
-        raise_on_failure=False,
-        options=contact_options or ContactOptions(),
-    )
+
+
+def _result(op, surface, speed, sol, periodic, wall_time):
+    """The :class:`SlidingResult` of a contact solution: friction in both forms, power, contact."""
     p = sol.pressure
-    total = float(p.mean() * area)
+    total = float(p.mean() * op.area)
     if total > 0:
         friction, friction_eq6 = (_friction_periodic if periodic else _friction_isolated)(op, surface, p, total)
         friction_eq6 = sliding_direction.eq6(op, surface.heights, p, total, friction_eq6)
     else:
         friction = friction_eq6 = 0.0
-    result = SlidingResult(
+    return SlidingResult(
         pressure=p,
         displacement=sol.displacement,
         gap=sol.gap,
@@ -329,11 +298,27 @@ def solve(
         residual=sol.residual,
         success=sol.success,
         message=sol.message,
-        wall_time=time.perf_counter() - t0,
+        wall_time=wall_time,
+        attainable=sol.attainable,
     )
-    log.info("speed %.3e m/s: %s", speed, sol.message)
-    if not sol.success and raise_on_failure:
-        raise ConvergenceError(f"speed {show(speed)} m/s: {sol.message}", result)
+
+
+def _assessed(result, surface, material, error_estimate, raise_on_failure, rerun, *, theta):
+    """``result`` with its error estimate and warnings (:mod:`bem.accuracy`); raises
+    :class:`~bem.errors.ConvergenceError` (carrying it) if it failed and ``raise_on_failure``.
+    ``rerun``: the keywords that solve the same problem on the finer grid of the refined estimate
+    (``warm``: whether it takes the coarse pressure as its first iterate)."""
+    warm = rerun.pop("warm", False)
+
+    def resolve(finer, initial):
+        return solve(finer, material, initial=initial if warm else None, error_estimate=None, **rerun)
+
+    periodic = rerun["periodic"]
+    result = assess(
+        result, surface, material, periodic=periodic, direction=theta, estimate=error_estimate, resolve=resolve
+    )
+    if not result.success and raise_on_failure:
+        raise ConvergenceError(f"speed {show(result.speed)} m/s: {result.message}", result)
     return result
 
 

@@ -17,7 +17,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import sliding
+from .accuracy import QUANTITIES, Finding, gather
+from .accuracy.assess import check_estimate
 from .checks import check_positive, show
+from .contact.options import MAXITER, RTOL
 from .errors import ConvergenceError, InputError
 
 __all__ = ["FrictionCurve", "friction_curve", "sweep", "check_sweep"]
@@ -30,7 +33,11 @@ class FrictionCurve:
     """A sweep over speeds at one load (arrays in the order of ``speeds``; failed points are NaN).
 
     ``results[i]`` is the :class:`~bem.sliding.SlidingResult` of ``speeds[i]`` or ``None`` if it
-    failed; ``messages[i]`` says why.
+    failed; ``messages[i]`` says why. ``error_estimate[q]`` is the array of the points' estimated
+    relative errors of ``q`` in ``friction``, ``contact_fraction``, ``peak_pressure`` (NaN where a
+    point has none: see its result's ``error_estimate.reasons``); ``warnings`` gathers every point's
+    warnings, one sentence per kind of finding with the speeds it comes from
+    (:func:`bem.accuracy.gather`).
     """
 
     speeds: np.ndarray
@@ -44,6 +51,8 @@ class FrictionCurve:
     messages: list
     results: list = field(repr=False)
     load: float = float("nan")
+    error_estimate: dict = field(default_factory=dict, repr=False)
+    warnings: tuple = ()
 
     @property
     def all_converged(self):
@@ -64,8 +73,8 @@ def sweep(
     *,
     speeds,
     load,
-    rtol=1e-8,
-    maxiter=400,
+    rtol=RTOL,
+    maxiter=MAXITER,
     warm_start=True,
     periodic=True,
     method="auto",
@@ -73,6 +82,8 @@ def sweep(
     on_point=None,
     keep=True,
     direction=0.0,
+    error_estimate="indicators",
+    contact_options=None,
 ):
     """Solve every surface at every speed, in increasing speed, warm-starting each surface.
 
@@ -92,8 +103,9 @@ def sweep(
         write it to disk at once.
     keep : bool
         Return the results; ``False`` keeps no fields in memory (a callback stores them).
-    Other parameters as in :func:`bem.solve`; the warm start is skipped for
-    ``method="adaptive"`` (its mesh differs from the surface's grid).
+    rtol, maxiter, periodic, method, direction
+        As in :func:`bem.solve`; the warm start is skipped for ``method="adaptive"`` (its
+        mesh differs from the surface's grid).
 
     Returns
     -------
@@ -121,6 +133,8 @@ def sweep(
                     periodic=periodic,
                     method=method,
                     direction=direction,
+                    error_estimate=error_estimate,
+                    contact_options=contact_options,
                 )
             except ConvergenceError as err:
                 res, message = None, str(err)
@@ -160,14 +174,16 @@ def friction_curve(
     *,
     speeds,
     load,
-    rtol=1e-8,
-    maxiter=400,
+    rtol=RTOL,
+    maxiter=MAXITER,
     warm_start=True,
     progress=False,
     callback=None,
     periodic=True,
     method="auto",
     direction=0.0,
+    error_estimate="indicators",
+    contact_options=None,
 ):
     """Friction against speed: solve at each speed, warm-starting from the neighbour.
 
@@ -183,13 +199,16 @@ def friction_curve(
         ``callback(index, speed, result_or_None, message)`` after each point (with a list of
         loads, ``index`` counts the points of all loads: ``load_index * len(speeds) + i``);
         a point that fails to converge is reported with ``None`` and the sweep goes on.
-    periodic, method, rtol, maxiter, direction
+    periodic, method, rtol, maxiter, direction, error_estimate, contact_options
         As in :func:`bem.solve` (``periodic=False``: isolated contact; ``direction``: sliding
-        direction, radians from +x). The warm start is skipped for ``method="adaptive"``.
+        direction, radians from +x; ``error_estimate``: ``"indicators"``, ``"refined"`` or
+        ``None``; ``contact_options``: the contact solver's :class:`~bem.contact.ContactOptions`).
+        The warm start is skipped for ``method="adaptive"``.
 
     Returns
     -------
-    FrictionCurve, or a list of them (one per load) when ``load`` is a list.
+    FrictionCurve, or a list of them (one per load) when ``load`` is a list; each with the
+    points' error estimates and their gathered warnings.
     """
     given = speeds
     try:
@@ -202,6 +221,7 @@ def friction_curve(
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
         raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {show(speeds.tolist())}")
     loads, several = _loads(load)
+    check_estimate(error_estimate)
     checked = [sliding.check_inputs(surface, material, 0.0, x, None, rtol) for x in loads]
     surface, rtol = checked[0][0], checked[0][4]
     from tqdm.auto import tqdm
@@ -227,6 +247,8 @@ def friction_curve(
                 method=method,
                 on_point=on_point,
                 direction=direction,
+                error_estimate=error_estimate,
+                contact_options=contact_options,
             )
             curves.append(_curve(speeds, results[0], messages[0], f_n))
     return curves if several else curves[0]
@@ -236,6 +258,16 @@ def _curve(speeds, results, messages, load):
     def column(attr):
         return np.array([getattr(r, attr) if r is not None else np.nan for r in results], dtype=float)
 
+    estimates = {
+        q: np.array(
+            [np.nan if r is None or r.error_estimate[q] is None else r.error_estimate[q] for r in results], dtype=float
+        )
+        for q in QUANTITIES
+    }
+    found = [
+        (f"v = {v:.3g} m/s", r.warnings if r is not None else (Finding(f"the solve failed: {m}", "not_converged"),))
+        for v, r, m in zip(speeds, results, messages)
+    ]
     return FrictionCurve(
         speeds=speeds,
         friction=column("friction"),
@@ -248,4 +280,6 @@ def _curve(speeds, results, messages, load):
         messages=messages,
         results=results,
         load=float(load),
+        error_estimate=estimates,
+        warnings=tuple(gather(found, noun="speeds")),
     )

@@ -4,8 +4,11 @@ A page holds a marker comment where a generated block goes:
 
 - ``<!-- generated:scene-keys -->``: every scene key the parser accepts
   (``viscobem_cli.scene.SCHEMA``), with the type, unit, default, range and meaning from the
-  code's table of keys (``viscobem_cli.scene.schema.KEYS``); then the built-in scenes, read from
-  their TOML files.
+  code's table of keys (``viscobem_cli.scene.schema.KEYS``, each cell escaped so that Markdown
+  shows it as written); then the built-in scenes, read from their TOML files, each with its
+  measured run time and output size from ``docs/timings.json`` (``docs/timings.py``).
+- ``<!-- generated:extras -->``: the pip extras of ``pyproject.toml`` with what each adds
+  (``viscobem_cli.catalog.EXTRA_PURPOSE``).
 - ``<!-- generated:validation -->``: the latest validation report (``docs/validation/``:
   ``report.json`` rendered by ``validation.report``, else ``report.md``) and the quick set's
   stored baselines (``validation/baselines/quick.json``).
@@ -13,6 +16,9 @@ A page holds a marker comment where a generated block goes:
   (``docs/benchmarks/*.json`` and the benchmark package's ``results/*.json``).
 - TeX between ``$...$`` or ``$$...$$`` becomes MathML at build time, so formulas need no
   script and no network to display.
+- ``<!-- generated:solver-settings -->``: the solve defaults, every field of
+  ``bem.contact.ContactOptions`` and every named constant of the contact solver
+  (``bem/contact/*.py``), each with its value and the reason written under it in the code.
 - ``<!-- generated:gallery -->``: every ``examples/*.py``, run in a subprocess at build time,
   shown with its code, its printed output and its figure. Running them here keeps each
   figure true to the code beside it; a failing example fails the build.
@@ -85,10 +91,19 @@ def _scene_keys():
         out.append("|---|---|---|---|---|---|")
         for key in _ordered(keys, info):
             d = info[key]  # the schema's key names come from the same table
-            cells = [f"`{key}`", d["type"], d["unit"], d["default"] or "none", d["range"], d["doc"]]
-            out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
+            cells = [d["type"], d["unit"], d["default"] or "none", d["range"], d["doc"]]
+            out.append("| " + " | ".join([f"`{key}`"] + [table_cell(c) for c in cells]) + " |")
         out.append("")
     return "\n".join(out)
+
+
+_MARKUP = re.compile(r"([\\`*_{}\[\]>|#!])")
+
+
+def table_cell(text):
+    """Plain text as a Markdown table cell that renders as written: ``|`` would end the cell, a
+    trailing ``{...}`` would become HTML attributes (attr_list), ``*``/``_`` emphasis, ``<`` a tag."""
+    return _MARKUP.sub(r"\\\1", str(text)).replace("<", "&lt;")
 
 
 def _ordered(keys, info):
@@ -97,14 +112,48 @@ def _ordered(keys, info):
     return known + sorted(set(keys) - set(known))
 
 
+def _measured_runs():
+    """The recorded runs of docs/timings.json (see docs/timings.py), by key."""
+    path = DOCS / "timings.json"
+    return json.loads(path.read_text(encoding="utf-8")).get("runs", {}) if path.is_file() else {}
+
+
 def _builtin_scenes():
     from viscobem_cli import scene
 
+    sys.path.insert(0, str(DOCS))
+    try:
+        import timings
+    finally:
+        sys.path.remove(str(DOCS))
+    runs = _measured_runs()
     out = []
     for name in scene.builtin_scenes():
         text = (scene.SCENE_DIR / f"{name}.toml").read_text(encoding="utf-8")
-        out.append(f"### `{name}`\n\n`viscobem run {name}`\n\n```toml\n{text.rstrip()}\n```\n")
+        run = runs.get(f"run_{name}")
+        took = ""
+        if run:
+            took = f": [{timings.time_text(run['wall_s'])} on 2 cores](timings.md#run_{name})"
+            if run.get("output_bytes"):
+                took += f", [{timings.size_text(run['output_bytes'])}](timings.md#run_{name}) of output"
+        out.append(f"### `{name}`\n\n`viscobem run {name}`{took}\n\n```toml\n{text.rstrip()}\n```\n")
     return "\n".join(out)
+
+
+def _extras():
+    """The pip extras of pyproject.toml, each with what it adds (``viscobem_cli.catalog``)."""
+    from viscobem_cli.catalog import EXTRA_PURPOSE
+
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]
+    rows = ["| extra | install | what it adds |", "|---|---|---|"]
+    for name in extras:
+        rows.append(f'| `{name}` | `pip install ".[{name}]"` | {EXTRA_PURPOSE.get(name, "")} |')
+    return "\n".join(rows) + "\n"
 
 
 # --- JSON records ----------------------------------------------------------------------------
@@ -290,9 +339,10 @@ def _run_example(script, out_dir):
             [str(ROOT)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
         ),
     )
-    run = subprocess.run(
+    out_dir.mkdir(parents=True)
+    run = subprocess.run(  # run from an empty folder, as a user who copied the script would
         [sys.executable, str(script), str(out_dir)],
-        cwd=EXAMPLES,
+        cwd=out_dir,
         env=env,
         capture_output=True,
         text=True,
@@ -379,6 +429,53 @@ def _defining_path(match):
     return f"::: {path}"
 
 
+# --- solver settings --------------------------------------------------------------------------
+
+
+def _documented_names(path, scope=None):
+    """``[(name, value source, docstring)]`` of the assignments in ``path`` (at module level, or in
+    the class ``scope``) that have a string literal right under them."""
+    import ast
+
+    tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    body = tree.body
+    if scope is not None:
+        body = next(n.body for n in tree.body if isinstance(n, ast.ClassDef) and n.name == scope)
+    out = []
+    for node, after in zip(body, body[1:]):
+        target = node.target if isinstance(node, ast.AnnAssign) else getattr(node, "targets", [None])[0]
+        doc = after.value.value if isinstance(after, ast.Expr) and isinstance(after.value, ast.Constant) else None
+        if isinstance(target, ast.Name) and isinstance(doc, str) and node.value is not None:
+            out.append((target.id, ast.get_source_segment(path.read_text(encoding="utf-8"), node.value), doc))
+    return out
+
+
+def _one_line(doc):
+    """A docstring on one table line: roles and double backquotes as plain code, pipes escaped."""
+    text = re.sub(r":\w+:`~?([^`]+)`", r"`\1`", " ".join(doc.split()))
+    return text.replace("``", "`").replace("|", "\\|")
+
+
+def _solver_settings():
+    """Tables of the solve defaults, the options a user may set, and the solver's constants."""
+    contact = ROOT / "bem" / "contact"
+    defaults = [(n, v, d) for n, v, d in _documented_names(contact / "options.py") if n in ("RTOL", "MAXITER")]
+    rows = ["| name | default | meaning |", "|---|---|---|"]
+    rows += [f"| `{n}` | `{v}` | {_one_line(d)} |" for n, v, d in defaults]
+    out = ["**Solve defaults** (`bem.contact.options`; `bem.solve`, `bem.friction_curve` and the scene's "
+           "`[solver]` table use them):", "", *rows, ""]
+    rows = ["| option | default | what it trades |", "|---|---|---|"]
+    rows += [f"| `{n}` | `{v}` | {_one_line(d)} |" for n, v, d in _documented_names(contact / "options.py", "ContactOptions")]
+    out += ["**`bem.contact.ContactOptions`**, what a user may set:", "", *rows, ""]
+    rows = ["| constant | value | module | reason |", "|---|---|---|---|"]
+    for path in sorted(contact.glob("*.py")):
+        for n, v, d in _documented_names(path):
+            if n.isupper() and n not in ("RTOL", "MAXITER"):
+                rows.append(f"| `{n}` | `{v}` | `bem.contact.{path.stem}` | {_one_line(d)} |")
+    out += ["**Constants of the contact solver**, each in the module that uses it:", "", *rows, ""]
+    return "\n".join(out)
+
+
 def on_page_markdown(markdown, page, config, files):
     markdown = _API.sub(_defining_path, markdown)
     blocks = {
@@ -386,8 +483,10 @@ def on_page_markdown(markdown, page, config, files):
             _scene_keys() + "\n## Built-in scenes\n\n" + _builtin_scenes()
         ),
         "<!-- generated:validation -->": _validation,
+        "<!-- generated:extras -->": _extras,
         "<!-- generated:benchmarks -->": _benchmarks,
         "<!-- generated:gallery -->": _gallery_markdown,
+        "<!-- generated:solver-settings -->": _solver_settings,
         "<!-- generated:seed-figures -->": lambda: _record(
             DOCS / "figures" / "seed_figures_summary.json", "Numbers behind the figures"
         ),

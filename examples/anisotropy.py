@@ -5,8 +5,11 @@ slow and a fast speed, each whitened by the same realisation at rest, so that on
 speed-induced part remains.
 """
 
+import sys
+from pathlib import Path
+
+import matplotlib.pyplot as plt
 import numpy as np
-from _common import figure
 
 import bem
 
@@ -17,7 +20,9 @@ theta = np.linspace(0, 2 * np.pi, 181)
 
 rest = bem.solve(surface, material, speed=0.0, load=0.3)
 reference = bem.anisotropy.spectral_moments(rest.displacement, L)
-plt, path = figure("anisotropy")
+out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")  # the figure's folder
+out.mkdir(parents=True, exist_ok=True)
+path = out / "anisotropy.png"
 fig, ax = plt.subplots(figsize=(4.2, 4.2), subplot_kw={"projection": "polar"})
 for xi in (1e-2, 1.0):
     result = bem.solve(surface, material, speed=xi * L / tau, load=0.3)

@@ -5,8 +5,11 @@ paper's material. Friction is small at both ends, where the solid answers elasti
 with E0 (slow) or E_inf (fast), and peaks in between: the bell-shaped curve.
 """
 
+import sys
+from pathlib import Path
+
+import matplotlib.pyplot as plt
 import numpy as np
-from _common import figure
 
 import bem
 
@@ -22,7 +25,9 @@ peak = np.argmax(curve.friction)
 print(f"friction peak {curve.friction[peak]:.4f} at xi = {xi[peak]:.3g}")
 print(f"contact area {100 * curve.contact_fraction[0]:.2f} % (slow) .. {100 * curve.contact_fraction[-1]:.2f} % (fast)")
 
-plt, path = figure("friction_curve")
+out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")  # the figure's folder
+out.mkdir(parents=True, exist_ok=True)
+path = out / "friction_curve.png"
 fig, ax = plt.subplots(figsize=(5.5, 3.6))
 ax.semilogx(xi, curve.friction, "o-", label="dissipation form (friction)")
 ax.semilogx(xi, curve.friction_eq6, "x--", label="direct form (friction_eq6)")

@@ -4,8 +4,11 @@ The 1-D isolated BEM (plane strain, DC-FFT) is compared with Hunter's (1961) clo
 three speeds: the pressure peak moves to the leading edge (+x) as the speed rises.
 """
 
+import sys
+from pathlib import Path
+
+import matplotlib.pyplot as plt
 import numpy as np
-from _common import figure
 
 import bem
 from validation.references.hunter import rolling_cylinder
@@ -15,7 +18,9 @@ R, P = 0.01, 1000.0  # m, N/m
 profile = bem.surfaces.cylinder(radius=R, n=1024, length=0.012)
 x = profile.x
 
-plt, path = figure("hunter_cylinder")
+out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")  # the figure's folder
+out.mkdir(parents=True, exist_ok=True)
+path = out / "hunter_cylinder.png"
 fig, ax = plt.subplots(figsize=(5.5, 3.6))
 for speed, colour in [(0.02, "C0"), (0.2, "C1"), (2.0, "C2")]:
     result = bem.solve(profile, material, speed=speed, load=P, periodic=False)

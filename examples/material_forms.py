@@ -4,8 +4,11 @@ A three-term Prony series is converted to its retardation (creep) form; the prod
 E(w) J(w) is 1 to round-off over twelve decades of frequency.
 """
 
+import sys
+from pathlib import Path
+
+import matplotlib.pyplot as plt
 import numpy as np
-from _common import figure
 
 import bem
 
@@ -19,7 +22,9 @@ E = material.complex_modulus(w)
 J = material.complex_compliance(w)
 print(f"max |E(w) J(w) - 1| = {np.max(np.abs(E * J - 1)):.1e}")
 
-plt, path = figure("material_forms")
+out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")  # the figure's folder
+out.mkdir(parents=True, exist_ok=True)
+path = out / "material_forms.png"
 fig, ax = plt.subplots(figsize=(5.5, 3.6))
 ax.loglog(w, E.real, label="storage E'")
 ax.loglog(w, E.imag, label="loss E''")

@@ -5,7 +5,10 @@ speed the pressure is Hertz's with the relaxed modulus; near V tau ~ a0 the pres
 toward the leading edge (+x) and the trailing side of the contact shrinks.
 """
 
-from _common import figure
+import sys
+from pathlib import Path
+
+import matplotlib.pyplot as plt
 
 import bem
 
@@ -20,7 +23,9 @@ ratios = [0.03, 0.3, 3.0]  # V tau / a0, tau the creep time
 results = [bem.solve(sphere, material, speed=r * a0 / 0.01, load=F, periodic=False) for r in ratios]
 peak = max(1e-6 * r.pressure.max() for r in results)
 
-plt, path = figure("sphere_sliding")
+out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")  # the figure's folder
+out.mkdir(parents=True, exist_ok=True)
+path = out / "sphere_sliding.png"
 fig, axes = plt.subplots(1, 3, figsize=(9.6, 3.3), sharey=True, layout="constrained")
 for ax, ratio, result in zip(axes, ratios, results):
     area = result.contact_fraction * sphere.length**2

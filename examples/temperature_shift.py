@@ -6,8 +6,11 @@ solid at a_T v. The friction curve computed at that temperature lies on the refe
 shifted by log10 a_T decades.
 """
 
+import sys
+from pathlib import Path
+
+import matplotlib.pyplot as plt
 import numpy as np
-from _common import figure
 
 import bem
 from bem.temperature import WLF
@@ -26,7 +29,9 @@ shifted = bem.friction_curve(surface, reference, speeds=speeds * 10**log_aT, loa
 error = np.max(np.abs(at_warm.friction - shifted.friction) / np.max(shifted.friction))
 print(f"friction at {warm - 273.15:.0f} C against the shifted reference curve: {error:.1e}")
 
-plt, path = figure("temperature_shift")
+out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")  # the figure's folder
+out.mkdir(parents=True, exist_ok=True)
+path = out / "temperature_shift.png"
 fig, ax = plt.subplots(figsize=(5.5, 3.6))
 ax.semilogx(speeds, at_reference.friction, "o-", label="23 C (reference)")
 ax.semilogx(speeds, at_warm.friction, "s-", label=f"{warm - 273.15:.0f} C")

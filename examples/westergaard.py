@@ -3,8 +3,11 @@
 The periodic 1-D BEM against the exact pressure at half the full-contact load.
 """
 
+import sys
+from pathlib import Path
+
+import matplotlib.pyplot as plt
 import numpy as np
-from _common import figure
 
 import bem
 from validation.references.westergaard import westergaard
@@ -24,7 +27,9 @@ error = np.linalg.norm(result.pressure - p_exact) / np.linalg.norm(p_exact)
 print(f"contact fraction {result.contact_fraction:.4f}, exact {2 * exact.half_width / wavelength:.4f}")
 print(f"relative L2 pressure error {error:.2e}")
 
-plt, path = figure("westergaard")
+out = Path(sys.argv[1] if len(sys.argv) > 1 else ".")  # the figure's folder
+out.mkdir(parents=True, exist_ok=True)
+path = out / "westergaard.png"
 fig, ax = plt.subplots(figsize=(5.5, 3.4))
 ax.plot(1e3 * x, 1e-6 * p_exact, "k-", lw=1, label="Westergaard (exact)")
 ax.plot(1e3 * x[::6], 1e-6 * result.pressure[::6], "o", ms=3, label="periodic BEM, 512 points")

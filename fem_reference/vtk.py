@@ -11,7 +11,9 @@ the Gauss-point values, weighted by the quadrature weights): ``stress`` and ``st
 3x3 tensors (components ``XX, XY, XZ, YX, YY, YZ, ZX, ZY, ZZ``; plane strain: ``strain ZZ = 0``,
 ``stress ZZ`` from the trace, :mod:`fem_reference.fields`), ``von_mises`` and
 ``hydrostatic_pressure`` (Pa, positive in compression), ``viscous_strain_tau=<tau>s`` per Prony
-term (the strain of its dashpot, a full tensor) and ``dissipation`` (W/m^3).
+term (the strain of its dashpot, a full tensor) and ``dissipation`` (W/m^3). Point data beside
+them: ``stress_nodal``, ``von_mises_nodal`` and ``hydrostatic_pressure_nodal`` (Pa, the L2
+projection of the quadrature values onto the nodes, :mod:`fem_reference.nodal`).
 
 Interface, point data at the top nodes ``x`` (m): ``pressure`` (Pa), ``gap`` (m, with the
 cylinder's profile ``h = -x^2/2R`` and the approach), ``contact`` (1 in contact), ``depression``
@@ -24,7 +26,9 @@ folded), the same with the prefix ``input_`` for the material as given, ``dimens
 (``V max(lambda_k) / a0``, retardation length over the relaxed Hertz half-width), the friction in
 both forms, ``friction_dissipation`` (field dissipation over ``P V``, the form the validation harness
 compares) and ``friction_moment`` (``x_bar / R``, the moment of the nodal forces), ``friction`` (the
-dissipation form; the moment form at rest), ``approach`` (m) and ``units`` (a note).
+dissipation form; the moment form at rest), ``approach`` (m), ``units`` (a note) and the provenance
+of :func:`provenance`: ``viscobem_version``, ``solver``, ``solver_settings`` (JSON: mesh, grading,
+element size, domain, linear solver) and ``units_json`` (the unit of every array, JSON).
 
 ``write_indentation(path, ...)`` writes the creep indentation as a ``.pvd`` time series (time in s) of
 ``.vtm`` files with the same names, in the ``(r, z)`` plane (x = r, y = z; the tensors' ``ZZ`` is the
@@ -94,11 +98,50 @@ def volume_grid(fields, material=None):
     grid.cell_data["von_mises"] = _cell_average(derived.von_mises(stress), weights, nel)[:, 0]
     grid.cell_data["hydrostatic_pressure"] = _cell_average(derived.hydrostatic_pressure(stress), weights, nel)[:, 0]
     grid.cell_data["dissipation"] = _cell_average(fields["dissipation"], weights, nel)[:, 0]
+    _add_nodal(grid, stress, basis)
     taus = material.relaxation_times if material is not None else range(len(fields["alpha"]))
     for tau, a in zip(taus, fields["alpha"]):
         grid.cell_data[tau_name(tau)] = _cell_average(derived.strain_tensor(np.asarray(a).reshape(-1, 3)), weights, nel)
     _name_components(grid)
     return grid
+
+
+def _add_nodal(dataset, stress, basis):
+    """Point data beside the cell averages: the stress, von Mises and hydrostatic pressure at the
+    nodes (``*_nodal``, the L2 projection of the quadrature values, :mod:`fem_reference.nodal`)."""
+    from .nodal import project_to_nodes
+
+    nodal = project_to_nodes(stress, basis)
+    dataset.point_data["stress_nodal"] = nodal
+    dataset.point_data["von_mises_nodal"] = derived.von_mises(nodal)
+    dataset.point_data["hydrostatic_pressure_nodal"] = derived.hydrostatic_pressure(nodal)
+    arr = dataset.GetPointData().GetArray("stress_nodal")
+    for i, c in enumerate(COMPONENTS):
+        arr.SetComponentName(i, c)
+
+
+def provenance(solver, settings):
+    """Field data naming what made a file: ``viscobem_version``, ``solver``, ``solver_settings``
+    (JSON: mesh, grading, element size, domain, linear solver, ...) and ``units_json``, the
+    unit of every array by name (JSON)."""
+    import json
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        installed = version("viscobem")
+    except PackageNotFoundError:
+        installed = "unknown"
+    units = {k: "Pa" for k in ("stress", "stress_nodal", "von_mises", "von_mises_nodal", "pressure", "E0", "E_inf")}
+    units.update(hydrostatic_pressure="Pa", hydrostatic_pressure_nodal="Pa", prony_moduli="Pa", dissipation="W/m^3")
+    units.update(displacement="m", gap="m", depression="m", radius="m", approach="m", strain="1", contact="1")
+    units.update(speed="m/s", relaxation_times="s", creep_times="s", time="s", nu="1", friction="1")
+    units.update(load="N/m (rolling), N (indentation)", dimensionless_speed="1", viscous_strain_tau="1")
+    return {
+        "viscobem_version": [installed],
+        "solver": [solver],
+        "solver_settings": [json.dumps(settings, sort_keys=True, default=str)],
+        "units_json": [json.dumps(units, sort_keys=True)],
+    }
 
 
 def interface_points(result):
@@ -148,6 +191,26 @@ def metadata(result):
         friction_moment=[result.friction],
         approach=[result.approach],
         units=[UNITS],
+        **provenance(
+            "fem_reference.rolling_cylinder (scikit-fem: plane strain, steady Eulerian Prony terms, Q2 displacement / discontinuous P1 pressure)",
+            {
+                k: getattr(result, k)
+                for k in (
+                    "mesh",
+                    "element_size",
+                    "grading",
+                    "domain_width",
+                    "domain_depth",
+                    "n_elements",
+                    "n_unknowns",
+                    "solver",
+                    "passes",
+                    "iterations",
+                    "residual",
+                    "linear_residual",
+                )
+            },
+        ),
     )
 
 
@@ -207,6 +270,7 @@ def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
     vol.cell_data["stress"] = _cell_average(stress, weights, nel)
     vol.cell_data["von_mises"] = _cell_average(derived.von_mises(stress), weights, nel)[:, 0]
     vol.cell_data["hydrostatic_pressure"] = _cell_average(derived.hydrostatic_pressure(stress), weights, nel)[:, 0]
+    _add_nodal(vol, stress, basis)
     for tau, a in zip(material.relaxation_times, snap["alpha"], strict=True):
         vol.cell_data[tau_name(tau)] = _cell_average(_axisymmetric_strain(a), weights, nel)
     vol.cell_data["dissipation"] = _cell_average(np.asarray(snap["dissipation"], float), weights, nel)[:, 0]
@@ -238,6 +302,12 @@ def write_indentation(path, snapshots, ops, material, radius, load, r):
     top = top_surface(ops.basis, axisymmetric=True)
     meta = _material_data(material)
     meta.update(load=[load], radius=[radius], units=[UNITS.replace("N/m (per unit length in z)", "N")])
+    meta.update(
+        provenance(
+            "fem_reference.indentation (scikit-fem: axisymmetric, exponential time steps)",
+            {"n_elements": ops.basis.mesh.t.shape[1], "times": [s["t"] for s in snapshots]},
+        )
+    )
     entries = []
     for k, snap in enumerate(snapshots):
         name = f"{path.stem}_{k:03d}.vtm"

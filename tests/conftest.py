@@ -74,3 +74,31 @@ def dense_contact(op, heights, shifted_approach):
     with threadpool_limits(limits=1, user_api="blas"):  # small dense solves: threads only hurt
         z, pivots = murty_lcp(M, -(ht + shifted_approach))
     return z.reshape(op.shape), shifted_approach - c * z.mean(), pivots
+
+
+def make_tiny_scene(outputs, speeds="[0.01, 0.1]", seed=1, solver=""):
+    """TOML of a 16² rough-surface study on the seed's material (seconds to run), with the
+    ``[outputs]`` lines ``outputs`` (and ``[solver]`` lines ``solver``): for the tests of what
+    ``viscobem run`` writes."""
+    return f"""
+[material]
+E0 = 3.3e6
+E_inf = 1.0e7
+creep_time = 0.01
+nu = 0.5
+[surface]
+kind = "self_affine"
+length = 0.01
+n = 16
+hurst = 0.8
+scales = 4
+rms_height = 2e-5
+seed = {seed}
+[loading]
+load = 0.3
+speeds = {speeds}
+[solver]
+{solver}
+[outputs]
+{outputs}
+"""

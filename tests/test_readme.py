@@ -35,3 +35,22 @@ def test_readme_python_quick_start_runs(tmp_path):
 def test_readme_links_resolve():
     for target in re.findall(r"\]\(((?!https?:)[^)#]+)\)", README):
         assert (ROOT / target).exists(), f"README links to missing {target}"
+
+
+def test_readme_says_how_its_scene_differs_from_the_default():
+    """The README's scene is smaller than `viscobem run`'s; the numbers it gives for the default
+    are the built-in seed scene's."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+    from viscobem_cli.catalog import scene_path
+
+    seed = tomllib.loads(scene_path(None).read_text(encoding="utf-8"))
+    shown = tomllib.loads(re.search(r"```toml\n(.*?)```", README, re.DOTALL).group(1))
+    said = re.search(r"This one is a\s+smaller study than the default \((.*?)\)", README, re.DOTALL).group(1)
+    said = " ".join(said.split())
+    for key, unit in (("n", "²"), ("scales", "")):
+        assert f"{shown['surface'][key]}{unit}" in said and f"{seed['surface'][key]}{unit}" in said
+    assert f"{shown['loading']['xi']['num']} speeds instead of {seed['loading']['xi']['num']}" in said
+    assert f"{shown['loading']['load']:g} N instead of {seed['loading']['load']:.2f} N" in said

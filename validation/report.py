@@ -1,6 +1,13 @@
-"""Validation reports: ``report.json`` (every number), ``report.md`` (a quick look) and a
-self-contained ``report.html`` (summary table, then per case the pressure overlays, error
-plots, sweeps from each solver and timings; PNG plots embedded as base64)."""
+"""Validation reports: ``report.json`` (every number), ``report.md`` (a quick look), a
+self-contained ``report.html`` (summary table, then per case the pressure overlays with their
+errors, the sweeps from each solver and the timings) and every plot as its own PNG under
+``plots/``.
+
+``report.html`` works offline and alone: the pressure overlays are drawn in the page from their
+data (inline SVG by ``report_plot.js``, inlined: drag to zoom, double-click to reset), because
+the differences that matter sit in a leading-edge layer a few cells wide; the other plots are
+PNG embedded as base64. Tick labels never overlap: :func:`declutter` drops minor labels, then
+thins major ones, until their boxes are apart (checked by :func:`overlapping_ticks`)."""
 
 from __future__ import annotations
 
@@ -9,11 +16,22 @@ import html
 import io
 import json
 import math
+import re
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["write_reports", "write_json", "write_markdown", "write_html", "plots"]
+__all__ = [
+    "write_reports",
+    "write_json",
+    "write_markdown",
+    "write_html",
+    "plots",
+    "write_pngs",
+    "declutter",
+    "overlapping_ticks",
+    "overlay_spec",
+]
 
 
 def _fmt(v):
@@ -155,8 +173,9 @@ def sensitivity_html(record):
 
 
 # ----------------------------------------------------------------------------- plots
-def plots(case):
-    """PNG bytes of the case's figures: ``[(title, png), ...]``."""
+def _figures(case):
+    """The case's matplotlib figures: ``[(title, figure, kind), ...]``, kind ``overlay``,
+    ``sweep`` or ``timings``."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -187,7 +206,7 @@ def plots(case):
         ae.set_xlabel(prof["xlabel"].replace("(m)", "(mm)"))
         ae.legend(fontsize=8)
         fig.subplots_adjust(left=0.13, right=0.97, top=0.93, bottom=0.1, hspace=0.08)
-        figs.append((f"pressure: {prof['label']}", fig))
+        figs.append((f"pressure: {prof['label']}", fig, "overlay"))
     for sw in case["sweeps"]:
         fig, ax = plt.subplots(figsize=(7, 4))
         for name, (x, y) in sw["curves"].items():
@@ -202,7 +221,7 @@ def plots(case):
         ax.set_title(sw["title"], fontsize=9)
         ax.legend(fontsize=8)
         fig.subplots_adjust(left=0.13, right=0.97, top=0.92, bottom=0.13)
-        figs.append((sw["title"], fig))
+        figs.append((sw["title"], fig, "sweep"))
     if case["runs"]:
         height = 0.35 * len(case["runs"]) + 1.2
         fig, ax = plt.subplots(figsize=(7, height))
@@ -213,9 +232,57 @@ def plots(case):
         ax.set_xlabel("wall time (s)")
         ax.invert_yaxis()
         fig.subplots_adjust(left=0.4, right=0.97, top=1 - 0.15 / height, bottom=0.65 / height)
-        figs.append(("timings", fig))
+        figs.append(("timings", fig, "timings"))
+    return figs
+
+
+def overlapping_ticks(fig):
+    """Pairs of tick labels whose boxes overlap, as ``(axis, text, text)``; draws the figure."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    pairs = []
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            labels = [t for t in axis.get_ticklabels(which="both") if t.get_visible() and t.get_text()]
+            boxes = [t.get_window_extent(renderer) for t in labels]
+            pairs += [
+                (axis.axis_name, labels[i].get_text(), labels[j].get_text())
+                for i in range(len(boxes))
+                for j in range(i + 1, len(boxes))
+                if boxes[i].overlaps(boxes[j])
+            ]
+    return pairs
+
+
+def declutter(fig, attempts=4):
+    """Remove tick labels until none overlap: first the minor labels of a crowded axis (a log
+    axis over less than two decades labels its minor ticks), then fewer major ticks."""
+    import matplotlib.ticker as mticker
+
+    for _ in range(attempts):
+        crowded = {name for name, _, _ in overlapping_ticks(fig)}
+        if not crowded:
+            return fig
+        for ax in fig.axes:
+            for axis in (ax.xaxis, ax.yaxis):
+                if axis.axis_name not in crowded:
+                    continue
+                if any(t.get_text() for t in axis.get_ticklabels(which="minor")):
+                    axis.set_minor_formatter(mticker.NullFormatter())
+                elif axis.get_scale() == "log":
+                    axis.set_major_locator(mticker.LogLocator(numticks=max(2, len(axis.get_majorticklocs()) // 2)))
+                else:
+                    axis.set_major_locator(mticker.MaxNLocator(nbins=max(2, len(axis.get_majorticklocs()) // 2)))
+    return fig
+
+
+def plots(case):
+    """PNG bytes of the case's figures, tick labels decluttered: ``[(title, png), ...]``."""
+    import matplotlib.pyplot as plt
+
     out = []
-    for title, fig in figs:  # fixed margins: tight_layout costs a third of the plotting time
+    for title, fig, _ in _figures(case):  # fixed margins: tight_layout costs a third of the plotting time
+        declutter(fig)
         buf = io.BytesIO()
         fig.savefig(buf, format="png", dpi=90)
         plt.close(fig)
@@ -223,16 +290,84 @@ def plots(case):
     return out
 
 
+def _slug(text):
+    return re.sub(r"[^A-Za-z0-9]+", "_", text).strip("_")[:60] or "plot"
+
+
+def write_pngs(record, out_dir):
+    """Every plot of every case as its own PNG under ``out_dir/plots/``; returns
+    ``{case: [(title, png, relative path), ...]}`` (the same figures the HTML embeds)."""
+    folder = Path(out_dir) / "plots"
+    figures = {}
+    for name, c in record["cases"].items():
+        figures[name] = []
+        if c["status"] == "error":
+            continue
+        for k, (title, png) in enumerate(plots(c)):
+            path = folder / f"{name}_{k:02d}_{_slug(title)}.png"
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_bytes(png)
+            figures[name].append((title, png, path.relative_to(out_dir).as_posix()))
+    return figures
+
+
+def _round(values, digits=6):
+    return [float(f"{v:.{digits}g}") if math.isfinite(v) else None for v in np.asarray(values, float)]
+
+
+def overlay_spec(prof):
+    """The data of one pressure overlay for the page's zoomable plot (mm, MPa)."""
+    curves = [
+        {"name": n, "x": _round(np.asarray(x) * 1e3), "y": _round(np.asarray(p) / 1e6), "exact": n == prof["reference"]}
+        for n, (x, p) in prof["curves"].items()
+    ]
+    errors = [
+        {"name": f"{n} - {prof['reference']}", "x": _round(np.asarray(x) * 1e3), "y": _round(np.asarray(e) / 1e6)}
+        for n, (x, e) in prof["errors"].items()
+    ]
+    return {
+        "title": prof["label"],
+        "xlabel": prof["xlabel"].replace("(m)", "(mm)"),
+        "panels": [
+            {"ylabel": "pressure (MPa)", "series": curves},
+            {"ylabel": "pressure error (MPa)", "series": errors, "zero": True},
+        ],
+    }
+
+
 _CSS = (
     "body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}table{border-collapse:collapse;"
     "margin:0.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}.PASS{background:#d4f4d4}"
-    ".FAIL,.ERROR{background:#f8c8c8}.info{background:#eee}img{max-width:100%}"
+    ".FAIL,.ERROR{background:#f8c8c8}.info{background:#eee}img{max-width:100%}figure{margin:1em 0}"
+    "figcaption{font-size:12px;color:#555}.vb-zoom svg{user-select:none;cursor:crosshair;max-width:860px}"
+    ".vb-frame{fill:none;stroke:#444;stroke-width:1}.vb-grid{stroke:#e4e4e4;stroke-width:1}"
+    ".vb-zero{stroke:#000;stroke-width:0.6}.vb-tick{font-size:11px;fill:#222}.vb-label{font-size:12px;fill:#222}"
+    ".vb-title{font-size:13px;fill:#222}.vb-exact{fill:none;stroke-width:1.6}.vb-line{fill:none;stroke-width:0.7;"
+    "opacity:0.85}.vb-dots{fill:none;stroke-width:3.5;stroke-linecap:round;opacity:0.85}"
+    ".vb-band{fill:#1f77b4;opacity:0.15}.vb-legend{font-size:12px;max-width:860px}.vb-key{cursor:pointer;"
+    "margin-right:1em;white-space:nowrap}.vb-key i{display:inline-block;width:12px;height:3px;margin-right:4px;"
+    "vertical-align:middle}.vb-off{opacity:0.35;text-decoration:line-through}"
 )
+_SCRIPT = Path(__file__).with_name("report_plot.js")
+
+
+def _overlay_html(name, k, prof, png_path):
+    """A zoomable overlay: the data as JSON beside the figure, drawn by report_plot.js."""
+    e = html.escape
+    data = json.dumps(overlay_spec(prof), allow_nan=False, separators=(",", ":")).replace("</", "<\\/")
+    link = f" <a href='{e(png_path)}'>PNG</a>" if png_path else ""
+    return (
+        f"<figure class='vb-zoom vb-plot' id='{e(name)}-overlay-{k}'><script type='application/json'>{data}</script>"
+        f"<figcaption>pressure: {e(prof['label'])}. Drag across the plot to zoom into an x range, "
+        f"double-click to reset; click a legend entry to hide it.{link}</figcaption></figure>"
+    )
 
 
 def write_html(record, path, baseline=None, figures=None, with_plots=True):
-    """``figures[name] = [(title, png), ...]`` (default: :func:`plots` of each case, unless
-    ``with_plots`` is false: then the report holds the tables only)."""
+    """``figures[name] = [(title, png[, path]), ...]`` (default: :func:`plots` of each case, unless
+    ``with_plots`` is false: then the report holds the tables only). A case's pressure overlays
+    (its first figures, one per profile) are drawn zoomable from their data; ``path``, the
+    figure's PNG file relative to the report, is linked under each figure."""
     e = html.escape
     env, s = record["environment"], record["summary"]
     parts = [
@@ -268,6 +403,7 @@ def write_html(record, path, baseline=None, figures=None, with_plots=True):
             )
     parts.append("</table>")
     parts += sensitivity_html(record)
+    count = 0
     for name, c in record["cases"].items():
         parts.append(
             f"<h2 id='{e(name)}'>{e(name)}: {e(c['title'])} <span class='{_status(c)}'>{_status(c)}</span></h2>"
@@ -289,10 +425,18 @@ def write_html(record, path, baseline=None, figures=None, with_plots=True):
             )
         parts.append("</table></details>")
         figs = figures[name] if figures is not None else (plots(c) if with_plots else [])
-        for title, png in figs:
-            parts.append(
-                f"<figure><img alt='{e(title)}' src='data:image/png;base64,{base64.b64encode(png).decode()}'/></figure>"
-            )
+        if figs:
+            overlays = len(c["profiles"])
+            for k, prof in enumerate(c["profiles"]):
+                parts.append(_overlay_html(name, k, prof, figs[k][2] if len(figs[k]) > 2 else None))
+            for fig in figs[overlays:]:
+                title, png = fig[0], fig[1]
+                link = f" <a href='{e(fig[2])}'>PNG</a>" if len(fig) > 2 else ""
+                parts.append(
+                    f"<figure class='vb-plot'><img alt='{e(title)}' src='data:image/png;base64,"
+                    f"{base64.b64encode(png).decode()}'/><figcaption>{e(title)}.{link}</figcaption></figure>"
+                )
+            count += len(figs)
         parts.append("<table><tr><th>solver</th><th>point</th><th>time (s)</th><th>peak MiB</th><th>detail</th></tr>")
         for r in c["runs"]:
             parts.append(
@@ -306,17 +450,21 @@ def write_html(record, path, baseline=None, figures=None, with_plots=True):
                 + ", ".join(f"<code>{e(f)}</code>" for f in c["files"] if f.endswith(".pvd"))
                 + "</p>"
             )
+    parts.append(f"<script>{_SCRIPT.read_text(encoding='utf-8')}</script>")
     parts.append("</body></html>")
+    parts[0] = parts[0].replace("<body>", f"<body data-plots='{count}'>")
     Path(path).write_text("\n".join(parts))
 
 
 def write_reports(record, out_dir, baseline=None, with_plots=True):
-    """Write report.json, report.md and report.html into ``out_dir``; return their paths."""
+    """Write report.json, report.md and report.html into ``out_dir``, and with plots each plot as
+    its own PNG under ``out_dir/plots/``; return the report paths."""
     out_dir = Path(out_dir)
     if baseline is not None:
         record = dict(record, baseline=baseline)
     paths = [out_dir / "report.json", out_dir / "report.md", out_dir / "report.html"]
     write_json(record, paths[0])
     write_markdown(record, paths[1], baseline)
-    write_html(record, paths[2], baseline, with_plots=with_plots)
+    figures = write_pngs(record, out_dir) if with_plots else None
+    write_html(record, paths[2], baseline, figures=figures, with_plots=with_plots)
     return paths

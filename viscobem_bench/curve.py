@@ -1,24 +1,21 @@
-"""Cost of a whole friction curve of the 20-term rubber, in elastic solves of the same surface.
+"""Cost of whole friction curves of the 20-term rubber, in elastic solves of the same surface.
 
 Run it with ``python -m viscobem_bench.curve [--quick] --out DIR`` (or ``viscobem bench curve``).
 It prints a table and writes ``DIR/curve.json`` and ``.md``.
 
 For a rubber user the cost that matters is a friction curve, not one speed. The periodic
-benchmark's surface and 20-term rubber (``E_inf/E0 = 1000``) are solved at 13 speeds,
-``xi = v tau / L`` from 1e-6 to 1e4 on the longest creep time ``tau``, at one load: the one that
-gives about 15 % contact at the slowest (rubbery) speed; the contact shrinks as the rubber
-stiffens with speed. The unit is the elastic solve of the same surface at the same load, with
-the rubber's relaxed modulus ``E0`` (same contact at the slow end): its operator products, and
-its wall time (the fastest of three). Everything runs in this process, so machine noise
-largely cancels in the ratios.
+benchmark's 20-term rubber (``E_inf/E0 = 1000``) slides over self-affine surfaces (H = 0.8, rms
+slope 0.1) of different seeds and bandwidths (16 to 256 scales on 512²), each at two loads:
+the ones that give about 3 % and 15 % contact at the rubbery end, where the rubber is its
+relaxed self (``E0``). Each curve is :func:`bem.friction_curve` at 13 speeds, ``xi = v tau / L``
+from 1e-6 to 1e4 on the longest creep time ``tau``, at rtol 1e-8; the contact shrinks as the
+rubber stiffens with speed.
 
-Three ways of sweeping are measured, each at rtol 1e-8:
-
-- ``cold``: every speed from scratch (large grids start from the grid with half the points);
-- ``warm``: :func:`bem.friction_curve`, each speed warm-started from the neighbour's solution
-  (on large grids the warm start goes through the coarse grid, see :mod:`bem.contact.start`);
-- ``warm_fine_only``: the same warm starts with ``ContactOptions(coarsen_warm=False)``, the
-  neighbour's solution used as it is on the fine grid.
+The unit is the elastic solve of the same surface at the same load with the relaxed modulus
+``E0`` (the same contact at the slow end): its operator products, and its wall and CPU time
+(the fastest of three, measured before and after the curve in the same process, so that the
+machine's load changes cancel in the ratios as far as they can). A curve costs
+``products / elastic products`` elastic solves by products, and the same by wall and CPU time.
 """
 
 import argparse
@@ -28,127 +25,166 @@ import time
 import numpy as np
 
 import bem
-from bem.contact import ContactOptions
-from viscobem_bench.periodic.problem import LENGTH, load_for_contact, materials, surface_heights
+from viscobem_bench.instruments import load_average
+from viscobem_bench.periodic.problem import LENGTH, materials
 from viscobem_bench.periodic.report import finish, table
 
 XIS = tuple(np.logspace(-6, 4, 13))
 SIZE, QUICK_SIZE = 512, 128
-CONTACT = 0.15
+SURFACES = ((1, 16), (2, 64), (3, 256))  # (seed, scales)
+QUICK_SURFACES = ((1, 16), (3, 64))
+CONTACTS = (0.03, 0.15)
+ROUGHNESS = dict(hurst=0.8, rms_slope=0.1)
 RTOL, MAXITER = 1e-8, 1000
-MODES = {
-    "cold": dict(warm_start=False),
-    "warm": dict(warm_start=True),
-    "warm_fine_only": dict(warm_start=True, options=ContactOptions(coarsen_warm=False)),
-}
+REPEATS = 3
 
 
-def _load(surface, rubber, speed):
-    """Load (N) for about ``CONTACT`` at ``speed``: the periodic benchmark's secant steps toward
-    10 %, scaled by the ratio of the fractions (contact grows about linearly with load here)."""
-    history = load_for_contact(surface, rubber, speed, 1.0, maxiter=MAXITER, tol=0.005, steps=8)
-    load, frac, _ = history[-1]
-    return load * CONTACT / frac
+def _load(surface, elastic, target):
+    """Load (N) that gives about ``target`` contact on the relaxed solid: secant steps on
+    ``log(contact)`` against ``log(load)`` (contact grows about linearly with load here)."""
+    load, history = 1.0, []
+    for _ in range(10):
+        frac = bem.solve(surface, elastic, speed=0.0, load=load, rtol=1e-6).contact_fraction
+        history.append((np.log(load), np.log(frac)))
+        if abs(frac / target - 1) < 0.02:
+            break
+        slope = 1.0
+        if len(history) > 1 and history[-1][1] != history[-2][1]:
+            slope = (history[-1][1] - history[-2][1]) / (history[-1][0] - history[-2][0])
+        load *= (target / frac) ** (1.0 / min(max(slope, 0.3), 3.0))
+    return load
 
 
-def _sweep(surface, rubber, speeds, load, warm_start, options=None):
-    rows, previous = [], None
-    started = time.perf_counter()
-    for speed in speeds:
-        t0 = time.perf_counter()
-        res = bem.solve(
-            surface,
-            rubber,
-            speed=float(speed),
-            load=load,
-            rtol=RTOL,
-            maxiter=MAXITER,
-            initial=previous if warm_start else None,
-            contact_options=options,
-            raise_on_failure=False,
-        )
+def _elastic(surface, elastic, load):
+    """Operator products, and the fastest wall and CPU times (s) of ``REPEATS`` elastic solves."""
+    walls, cpus = [], []
+    for _ in range(REPEATS):
+        wall, cpu = time.perf_counter(), time.process_time()
+        res = bem.solve(surface, elastic, speed=0.0, load=load, rtol=RTOL)
+        walls.append(time.perf_counter() - wall)
+        cpus.append(time.process_time() - cpu)
+    return {"matvecs": res.matvecs, "wall_time": min(walls), "cpu_time": min(cpus), "contact": res.contact_fraction}
+
+
+def _curve(surface, rubber, speeds, load):
+    """One warm-started friction curve: per speed products, iterations, contact, friction."""
+    rows = []
+    wall, cpu = time.perf_counter(), time.process_time()
+    curve = bem.friction_curve(surface, rubber, speeds=speeds, load=load, rtol=RTOL, maxiter=MAXITER)
+    wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+    for res, message in zip(curve.results, curve.messages):
+        ok = res is not None
         rows.append(
             dict(
-                matvecs=res.matvecs,
-                iterations=res.iterations,
-                wall_time=time.perf_counter() - t0,
-                contact_fraction=res.contact_fraction,
-                friction=res.friction,
-                success=res.success,
+                matvecs=res.matvecs if ok else None,
+                iterations=res.iterations if ok else None,
+                contact_fraction=res.contact_fraction if ok else None,
+                friction=res.friction if ok else None,
+                success=ok,
+                message=message,
             )
         )
-        previous = res.pressure if res.success else None
-    return rows, time.perf_counter() - started
+    return rows, wall, cpu
 
 
 def run(quick=False, out_dir=None, size=None, echo=print):
-    """Measure the three sweeps (module docstring); print, write and return the record."""
+    """Measure every (surface, load) curve (module docstring); print, write and return the record."""
     n = size or (QUICK_SIZE if quick else SIZE)
-    surface = bem.surfaces.from_heights(surface_heights(n), LENGTH)
     rubber, _ = materials()["rubber20"]
-    tau = float(rubber.creep_times.max())
-    speeds = np.asarray(XIS) * LENGTH / tau
-    started = time.perf_counter()
-    load = _load(surface, rubber, speeds[0])
     elastic = bem.Material.elastic(rubber.E0, nu=rubber.nu)
-    times = []
-    for _ in range(4):  # the first call also plans the FFTs: not kept
-        ref = bem.solve(surface, elastic, speed=0.0, load=load, rtol=RTOL)
-        times.append(ref.wall_time)
-    unit = {"matvecs": ref.matvecs, "wall_time": min(times[1:]), "contact_fraction": ref.contact_fraction}
-    modes = {}
-    for name, kw in MODES.items():
-        rows, total = _sweep(surface, rubber, speeds, load, kw["warm_start"], kw.get("options"))
-        products = sum(r["matvecs"] for r in rows)
-        modes[name] = dict(
-            rows=rows,
-            products=products,
-            wall_time=total,
-            products_in_elastic_solves=products / unit["matvecs"],
-            time_in_elastic_solves=total / unit["wall_time"],
-            all_converged=all(r["success"] for r in rows),
-        )
-        echo(
-            f"{name:15s} {products:6d} products = {modes[name]['products_in_elastic_solves']:5.1f} elastic solves, "
-            f"{total:6.2f} s = {modes[name]['time_in_elastic_solves']:5.1f} elastic solves"
-        )
-    fields = dict(n=n, rtol=RTOL, xis=list(XIS), speeds_m_s=speeds.tolist(), load_N=load, elastic=unit, modes=modes)
+    speeds = np.asarray(XIS) * LENGTH / float(rubber.creep_times.max())
+    started, load_start = time.perf_counter(), load_average()
+    curves = []
+    for seed, scales in QUICK_SURFACES if quick else SURFACES:
+        surface = bem.surfaces.self_affine(n, LENGTH, scales=scales, seed=seed, **ROUGHNESS)
+        for target in CONTACTS:
+            load = _load(surface, elastic, target)
+            before = _elastic(surface, elastic, load)
+            rows, wall, cpu = _curve(surface, rubber, speeds, load)
+            after = _elastic(surface, elastic, load)
+            unit = {k: min(before[k], after[k]) for k in ("wall_time", "cpu_time")}
+            unit.update(matvecs=before["matvecs"], contact=before["contact"])
+            products = sum(r["matvecs"] or 0 for r in rows)
+            curves.append(
+                dict(
+                    seed=seed,
+                    scales=scales,
+                    target_contact=target,
+                    load_N=load,
+                    elastic=unit,
+                    rows=rows,
+                    products=products,
+                    wall_time=wall,
+                    cpu_time=cpu,
+                    products_in_elastic_solves=products / unit["matvecs"],
+                    wall_in_elastic_solves=wall / unit["wall_time"],
+                    cpu_in_elastic_solves=cpu / unit["cpu_time"],
+                    all_converged=all(r["success"] for r in rows),
+                )
+            )
+            c = curves[-1]
+            echo(
+                f"seed {seed}, {scales:3d} scales, contact {unit['contact']:.3f}: {products:6d} products = "
+                f"{c['products_in_elastic_solves']:5.1f} elastic solves; wall {wall:6.1f} s = "
+                f"{c['wall_in_elastic_solves']:5.1f}, CPU {cpu:6.1f} s = {c['cpu_in_elastic_solves']:5.1f}"
+                + ("" if c["all_converged"] else "; NOT ALL CONVERGED")
+            )
+    fields = dict(
+        n=n,
+        rtol=RTOL,
+        xis=list(XIS),
+        speeds_m_s=speeds.tolist(),
+        surface=ROUGHNESS,
+        curves=curves,
+        load_average=[load_start, load_average()],
+        worst=dict(
+            products=max(c["products_in_elastic_solves"] for c in curves),
+            wall=max(c["wall_in_elastic_solves"] for c in curves),
+            cpu=max(c["cpu_in_elastic_solves"] for c in curves),
+        ),
+    )
     return finish("curve", started, _report, out_dir, echo, **fields)
 
 
 def _report(result, markdown=False):
-    e = result["elastic"]
     head = (
-        f"{result['n']}² grid, load {result['load_N']:.4g} N, rtol {result['rtol']:g}; unit: the elastic solve "
-        f"(E0, same load, contact {e['contact_fraction']:.3f}): {e['matvecs']} products, {e['wall_time']:.3f} s"
+        f"{result['n']}² grids, 20-term rubber (E_inf/E0 = 1000), {len(result['xis'])} speeds xi = "
+        f"{result['xis'][0]:g}..{result['xis'][-1]:g}, rtol {result['rtol']:g}; unit: the elastic solve of the "
+        f"same surface and load (E0); load average {result['load_average'][0]} -> {result['load_average'][1]} "
+        "(a shared machine: wall times are noisy, CPU times less so)"
     )
     summary = [
-        [name, m["products"], f"{m['products_in_elastic_solves']:.1f}", f"{m['wall_time']:.2f}"]
-        + [f"{m['time_in_elastic_solves']:.1f}", "yes" if m["all_converged"] else "NO"]
-        for name, m in result["modes"].items()
+        [c["seed"], c["scales"], f"{c['elastic']['contact']:.3f}", c["products"], c["elastic"]["matvecs"]]
+        + [f"{c['products_in_elastic_solves']:.1f}", f"{c['wall_time']:.1f}", f"{c['wall_in_elastic_solves']:.1f}"]
+        + [f"{c['cpu_time']:.1f}", f"{c['cpu_in_elastic_solves']:.1f}", "yes" if c["all_converged"] else "NO"]
+        for c in result["curves"]
     ]
+    headers = ["seed", "scales", "contact", "products", "elastic products", "elastic solves"]
+    headers += ["wall s", "elastic solves (wall)", "CPU s", "elastic solves (CPU)", "converged"]
+    names = [f"{c['seed']}/{c['scales']}/{c['target_contact']:g}" for c in result["curves"]]
     per_speed = [
-        [f"{xi:.2g}", f"{result['modes']['cold']['rows'][i]['contact_fraction']:.4f}"]
-        + [str(m["rows"][i]["matvecs"]) for m in result["modes"].values()]
+        [f"{xi:.2g}"]
+        + [f"{c['rows'][i]['matvecs']} ({c['rows'][i]['contact_fraction'] or 0:.3f})" for c in result["curves"]]
         for i, xi in enumerate(result["xis"])
     ]
+    worst = result["worst"]
     return "\n\n".join(
         [
             head,
-            table(
-                ["sweep", "products", "elastic solves", "wall s", "elastic solves (time)", "converged"],
-                summary,
-                markdown,
-            ),
-            table(["xi", "contact"] + [f"products {k}" for k in result["modes"]], per_speed, markdown),
-            f"total time {result['total_time']:.0f} s",
+            table(headers, summary, markdown),
+            "products (contact) per speed, by seed/scales/contact:",
+            table(["xi"] + names, per_speed, markdown),
+            f"worst curve: {worst['products']:.1f} elastic solves by products, {worst['wall']:.1f} by wall time, "
+            f"{worst['cpu']:.1f} by CPU time; total time {result['total_time']:.0f} s",
         ]
     )
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m viscobem_bench.curve", description=__doc__.split("\n")[0])
-    parser.add_argument("--quick", action="store_true", help=f"n = {QUICK_SIZE} (smoke test)")
+    parser.add_argument(
+        "--quick", action="store_true", help=f"n = {QUICK_SIZE}, surfaces {QUICK_SURFACES} (smoke test)"
+    )
     parser.add_argument("--size", type=int, help=f"grid size (default {SIZE})")
     parser.add_argument("--out", default=None, help="directory for curve.json and .md")
     args = parser.parse_args(argv)

@@ -58,7 +58,7 @@ def run_scaling(quick, tmp, echo=print, max_seconds=600.0):
         tamaas_version = tamaas.__version__
     except ImportError:
         tamaas_version = None
-        echo("tamaas not installed (optional: pip install tamaas): skipping the tamaas comparison")
+        echo('tamaas not installed (pip install "viscobem[tamaas]"): skipping the tamaas comparison')
     sizes = (64, 128, 256, 512) if quick else (64, 128, 256, 512, 1024, 2048)
     rows, notes = [], []
     cores = os.cpu_count() or 1

@@ -16,11 +16,29 @@ DEFAULT_NAME = "seed"
 EXTRAS = {
     "dask": ("dask", "a dask.distributed scheduler ([solver] scheduler)"),
     "distributed": ("dask", "a dask.distributed scheduler ([solver] scheduler)"),
-    "pyvista": ("vtk", "VTK output ([outputs] vtk = true; viscobem validate without --no-vtk)"),
-    "vtk": ("vtk", "VTK output ([outputs] vtk = true; viscobem validate without --no-vtk)"),
-    "pypardiso": ("fem", "the FEM reference's PARDISO solver"),
-    "SurfaceTopography": ("topography", "measured topography files"),
+    "pyvista": ("vtk", "VTK output ([outputs] vtk = true; the VTK files of viscobem validate)"),
+    "vtk": ("vtk", "VTK output ([outputs] vtk = true; the VTK files of viscobem validate)"),
+    "pypardiso": ("fem", "the FEM reference's PARDISO solver (without it: SuperLU, slower)"),
+    "SurfaceTopography": ("topography", "reading measured topography files (scene kind measured)"),
     "psutil": ("bench", "the benchmarks' memory measurements"),
+    "tamaas": ("tamaas", "the elastic reference of viscobem bench periodic"),
+    "pyvisco": ("pyvisco", "viscobem bench materials (the comparison with pyvisco)"),
+    "selenium": ("browser", "the browser test of report.html"),
+}
+
+# pip extra -> what it adds (the getting-started page lists them from here; a test keeps this in
+# step with pyproject.toml)
+EXTRA_PURPOSE = {
+    "vtk": "VTK files for ParaView (pyvista): `[outputs] vtk = true` and the VTK of `viscobem validate`",
+    "topography": 'measured topography files (SurfaceTopography): `kind = "measured"`, `bem.surfaces.measured`',
+    "dask": "sweeps on a dask.distributed cluster: `[solver] scheduler`, `--scheduler`",
+    "fem": "PARDISO (pypardiso), a faster sparse solver for the FEM reference (SuperLU without it)",
+    "bench": "psutil, for the benchmarks",
+    "tamaas": "tamaas, the elastic reference of `viscobem bench periodic`",
+    "pyvisco": "pyvisco, the comparison of `viscobem bench materials`",
+    "test": "the test tools, and every optional package the test suite exercises",
+    "browser": "selenium, for the browser test of `report.html` (`pytest -m browser`, with Chromium)",
+    "docs": "MkDocs and its plugins, to build this documentation",
 }
 
 
@@ -60,9 +78,27 @@ def install_hint(module):
     return f'{top} is not installed; {what} needs it: pip install "viscobem[{extra}]"'
 
 
-def require(module):
-    """Raise InputError with the install hint if the optional ``module`` cannot be imported."""
+def hint_for(err):
+    """The install hint for an ImportError: by the module it names, else by an optional
+    package named in its message (a library may raise its own ImportError with advice)."""
+    hint = install_hint(getattr(err, "name", None))
+    if hint is None:
+        text = str(err)
+        hint = next((install_hint(m) for m in EXTRAS if m in text), None)
+    return hint
+
+
+def missing(module):
+    """The install hint if the optional ``module`` cannot be imported, else None."""
     try:
         importlib.import_module(module)
-    except ModuleNotFoundError as err:
-        raise InputError(install_hint(err.name) or str(err)) from None
+    except ImportError as err:
+        return hint_for(err) or install_hint(module) or str(err)
+    return None
+
+
+def require(module):
+    """Raise InputError with the install hint if the optional ``module`` cannot be imported."""
+    hint = missing(module)
+    if hint is not None:
+        raise InputError(hint)

@@ -5,18 +5,18 @@
   the friction peak sits near ``v tau ~ a0`` whatever the domain).
 - :func:`describe_xi`: the time ``tau`` (and where it comes from) and the speeds that the
   sweep's ``xi`` range stands for.
-- :func:`resolution_warnings` (before the run), :func:`friction_form_warnings` and
-  :func:`peak_warnings` (after):
-  texts that say what is doubtful and what to change; the run prints them and stores them
-  in ``results.json["warnings"]``.
+- :func:`resolution_warnings` (before the run) and :func:`peak_warnings` (after): texts that
+  say what is doubtful and what to change; the run prints them and stores them in
+  ``results.json["warnings"]``, beside every point's own warnings and error estimate, which
+  come with its result from :mod:`bem.accuracy` (this module reads them, it does not judge the
+  resolution a second time).
 """
 
 import math
 
 import numpy as np
 
-FORM_TOLERANCE = 0.05  # the dissipation and eq. 6 friction forms agree to 5 % on a resolved grid
-NEGLIGIBLE = 0.01  # friction below 1 % of the curve's peak is not compared (both forms ~ 0 there)
+from bem.accuracy.indicators import points_per_wavelength
 
 
 def hertz_radius(kind, *, modulus, nu, radius, load):
@@ -39,55 +39,22 @@ def describe_xi(scene):
     ]
 
 
-def points_per_wavelength(raw_surface, n):
-    """Grid points per shortest wavelength of a generated surface, or None if not defined."""
-    kind = raw_surface.get("kind")
-    if kind == "self_affine":
-        s = float(raw_surface.get("anisotropy", 1.0))
-        return n / (raw_surface.get("scales", 64) * max(s, 1 / s))
-    if kind == "sinusoid":
-        wavelength = raw_surface.get("wavelength", raw_surface["length"])
-        return wavelength / raw_surface["length"] * n
-    return None
-
-
-def resolution_warnings(raw_surface, n, minimum):
-    """A warning when the grid has fewer than ``minimum`` points per shortest wavelength."""
-    ppw = points_per_wavelength(raw_surface, n)
-    if ppw is None or ppw >= minimum:
+def resolution_warnings(surface, kind, periodic, minimum):
+    """A warning before the run when a periodic surface has fewer than ``minimum`` grid points per
+    shortest wavelength (:func:`bem.accuracy.indicators.points_per_wavelength`, measured on the
+    heights, whatever made them); isolated domains are judged by their solutions alone."""
+    if not periodic:
         return []
-    need = math.ceil(n * minimum / ppw)
+    ppw = points_per_wavelength(surface.heights)
+    if ppw >= minimum:
+        return []
+    need = math.ceil(surface.n * minimum / ppw)
+    also = " or lower [surface] scales" if kind == "self_affine" else ""
     return [
-        f"the grid has {ppw:.3g} points per shortest wavelength of the surface (n = {n}); below "
+        f"the grid has {ppw:.3g} points per shortest wavelength of the surface (n = {surface.n}); below "
         f"{minimum}, contact spots are not resolved and friction and contact area are not converged "
-        f"(the dissipation and eq. 6 friction forms drift apart). Raise [surface] n to at least {need} "
-        f"or lower [surface] scales."
+        f"(each point's estimated errors follow the run). Raise [surface] n to at least {need}{also}."
     ]
-
-
-def friction_form_warnings(
-    curves, tolerance=FORM_TOLERANCE, advice="Raise [surface] n (or lower [surface] scales) until they agree."
-):
-    """A warning per load whose two friction forms differ by more than ``tolerance`` (relative)."""
-    out = []
-    for curve in curves:
-        mu = np.array([np.nan if x is None else x for x in curve["friction"]], dtype=float)
-        mu6 = np.array([np.nan if x is None else x for x in curve["friction_eq6"]], dtype=float)
-        if not np.any(np.isfinite(mu)):
-            continue
-        peak = np.nanmax(np.abs(mu))
-        with np.errstate(invalid="ignore", divide="ignore"):
-            rel = np.abs(mu - mu6) / np.maximum(np.abs(mu), np.abs(mu6))
-        bad = np.flatnonzero((rel > tolerance) & (np.abs(mu) > NEGLIGIBLE * peak))
-        if bad.size == 0:
-            continue
-        worst = int(bad[np.argmax(rel[bad])])
-        out.append(
-            f"at load {curve['load']:g}, the two friction forms (dissipation and eq. 6) differ by more "
-            f"than {100 * tolerance:g} % at {bad.size} of {mu.size} speeds (worst {100 * rel[worst]:.3g} % "
-            f"at xi = {curve['xi'][worst]:.3g}): the grid does not resolve the contact. {advice}"
-        )
-    return out
 
 
 def peak_warnings(curves, xi_time_source):

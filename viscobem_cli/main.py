@@ -7,14 +7,18 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
     viscobem scene [NAME]                     print a built-in scene (default: the template)
     viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem,
                                               fem_convergence, isolated, rubber_speeds, curve,
-                                              broadband, import, materials); writes only
-                                              under DIR
+                                              broadband, import, materials, measured, accuracy);
+                                              writes only under DIR
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
 Bad input (scene or arguments) prints one line naming the problem, with no traceback,
-and exits with status 2; so does a missing optional package (the line names the pip extra
-to install). A sweep with points that did not converge exits with 1, and so does a
-validation run in which any case misses a tolerance or a baseline.
+and exits with status 2. A missing optional package costs one line naming the pip extra that
+provides it, never a traceback: what a command was asked for explicitly (VTK in a scene, a Dask
+scheduler, a measured topography) stops it before any work, with status 2; what is on by
+default is skipped or replaced, and said so (``viscobem validate`` without pyvista writes every
+report but the VTK files; the FEM without pypardiso uses SuperLU). A sweep with points that did
+not converge exits with 1, and so does a validation run in which any case misses a tolerance or
+a baseline.
 """
 
 import argparse
@@ -23,7 +27,7 @@ from pathlib import Path
 
 from bem.errors import ConvergenceError, InputError
 
-from .catalog import builtin_scenes, install_hint, require, scene_path
+from .catalog import builtin_scenes, hint_for, missing, require, scene_path
 
 
 def _cmd_run(args):
@@ -116,14 +120,63 @@ def _cmd_bench(args):
     return 0
 
 
+def _optional_notes(args, names):
+    """Whether to write VTK, and one line for each default part that a missing extra drops."""
+    from validation.cases import CASES
+
+    vtk = not args.no_vtk
+    hint = missing("pyvista") if vtk else None
+    if hint:
+        print(f"  no VTK files: {hint}")
+        vtk = False
+    if any("fem" in CASES[n].solvers for n in names):
+        hint = missing("pypardiso")
+        if hint:
+            print(f"  the FEM solves with SuperLU: {hint}")
+    return vtk
+
+
 def _cmd_validate(args):
-    if not args.no_vtk:
-        require("pyvista")
-    from validation import baselines
     from validation.report import write_reports
     from validation.runner import run_cases, select
 
     names = select(args.case or [])
+    baseline_path, compare_with = _baseline_plan(args)
+    print(f"viscobem validate: {len(names)} case(s), {'quick' if args.quick else 'full'} set; writing to {args.out}")
+    vtk = _optional_notes(args, names)
+    record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=vtk, progress=not args.no_progress)
+    summary = record["summary"]
+    if args.sensitivity:
+        from validation.sensitivity import attach
+
+        attach(record, names, quick=args.quick, progress=not args.no_progress)
+    comparison = None
+    if compare_with:
+        from validation import baselines
+
+        comparison = baselines.compare(record, baseline_path)
+    paths = write_reports(record, args.out, comparison, with_plots=not args.no_plots)
+    _print_cases(record)
+    status = 0 if not summary["failed"] else 1
+    if args.sensitivity:
+        from validation.sensitivity import print_summary
+
+        status = print_summary(record) or status
+    if comparison is not None:
+        status = _print_comparison(comparison, baseline_path) or status
+    if args.update_baselines:
+        _update_baselines(record, baseline_path, args.out)
+    print(
+        f"  {summary['passed']}/{summary['cases']} cases passed in {record['seconds']:.1f} s; "
+        f"reports: {', '.join(str(p) for p in paths)}"
+    )
+    return status
+
+
+def _baseline_plan(args):
+    """``(baseline path, whether to compare with it)``; bad combinations of flags are input errors."""
+    from validation import baselines
+
     if args.update_baselines and (not args.quick or args.case):
         raise InputError(
             "--update-baselines needs --quick and every case (no --case): the baseline file holds the whole quick set"
@@ -134,17 +187,11 @@ def _cmd_validate(args):
         raise InputError(
             f"baseline {baseline_path} does not exist; pass --no-baseline or create it with --update-baselines"
         )
-    print(f"viscobem validate: {len(names)} case(s), {'quick' if args.quick else 'full'} set; writing to {args.out}")
-    record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=not args.no_vtk, progress=not args.no_progress)
-    summary = record["summary"]
-    if args.sensitivity:
-        from validation.sensitivity import attach
+    return baseline_path, compare_with
 
-        attach(record, names, quick=args.quick, progress=not args.no_progress)
-    comparison = None
-    if compare_with:
-        comparison = baselines.compare(record, baseline_path)
-    paths = write_reports(record, args.out, comparison, with_plots=not args.no_plots)
+
+def _print_cases(record):
+    """One line per case, then the failed checks."""
     for name, case in record["cases"].items():
         judged = [k for k in case["checks"] if k["judged"]]
         print(
@@ -153,41 +200,39 @@ def _cmd_validate(args):
         )
         if case["status"] == "error":
             print(f"      {case['error']}")
-    for k in summary["failed_checks"]:
+    for k in record["summary"]["failed_checks"]:
         print(
             f"  FAIL {k['case']}: {k['solver']} {k['metric']} at {k['label']} = {k['value']:.3g} "
             f"> {k['tolerance']:.3g} ({k['why']})"
         )
-    status = 0 if not summary["failed"] else 1
-    if args.sensitivity:
-        from validation.sensitivity import print_summary
 
-        status = print_summary(record) or status
-    if comparison is not None:
-        for r in comparison["regressions"]:
-            print(
-                f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
-                f"(allowed +-{r['allowed']:.3g})"
-            )
-        if comparison["missing"]:
-            first = comparison["missing"][0]["key"]
-            print(
-                f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
-                f"regenerate with: viscobem validate --quick --update-baselines --out DIR"
-            )
-        print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
-        status = status or (0 if comparison["ok"] else 1)
-    if args.update_baselines:
-        if summary["failed"]:
-            print("  baselines NOT updated: some cases fail their tolerances")
-        else:
-            command = "viscobem validate --quick --update-baselines --out " + str(args.out)
-            print(f"  baselines written to {baselines.write(record, baseline_path, command)}")
-    print(
-        f"  {summary['passed']}/{summary['cases']} cases passed in {record['seconds']:.1f} s; "
-        f"reports: {', '.join(str(p) for p in paths)}"
-    )
-    return status
+
+def _print_comparison(comparison, baseline_path):
+    """The regressions against the baselines; returns the exit status they give (0 or 1)."""
+    for r in comparison["regressions"]:
+        print(
+            f"  REGRESSION {r['case']}: {r['key']} = {r['value']:.6g}, baseline {r['baseline']:.6g} "
+            f"(allowed +-{r['allowed']:.3g})"
+        )
+    if comparison["missing"]:
+        first = comparison["missing"][0]["key"]
+        print(
+            f"  {len(comparison['missing'])} value(s) have no baseline (first: {first}); "
+            f"regenerate with: viscobem validate --quick --update-baselines --out DIR"
+        )
+    print(f"  baselines ({baseline_path}): " + ("match" if comparison["ok"] else "DIFFER"))
+    return 0 if comparison["ok"] else 1
+
+
+def _update_baselines(record, baseline_path, out):
+    """Write the quick set's baselines, unless a case fails its tolerances."""
+    from validation import baselines
+
+    if record["summary"]["failed"]:
+        print("  baselines NOT updated: some cases fail their tolerances")
+        return
+    command = "viscobem validate --quick --update-baselines --out " + str(out)
+    print(f"  baselines written to {baselines.write(record, baseline_path, command)}")
 
 
 def _version():
@@ -264,11 +309,15 @@ def build_parser():
             "broadband",
             "import",
             "materials",
+            "measured",
+            "accuracy",
         ],
         help="all (default: every solver, scaling, skipping), one detailed benchmark "
         "(fem_convergence: the FEM's observed orders in mesh size, domain size and time step), "
-        "import (import time of bem against numpy + scipy), or materials (Prony fits "
-        "and master curves against pyvisco)",
+        "import (import time of bem against numpy + scipy), materials (Prony fits "
+        "and master curves against pyvisco), measured (boundary treatments of measured scans: "
+        "patches cut from known surfaces), or accuracy (the error estimate's cost and its "
+        "agreement with the twice-finer solve)",
     )
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
@@ -311,8 +360,8 @@ def main(argv=None):
         where = f" {err.filename!r}" if getattr(err, "filename", None) else ""
         print(f"viscobem: error: cannot write{where}: {err.strerror or err}", file=sys.stderr)
         return 2
-    except ModuleNotFoundError as err:
-        hint = install_hint(err.name)
+    except ImportError as err:  # an optional package: one line naming its extra
+        hint = hint_for(err)
         if hint is None:
             raise
         print(f"viscobem: error: {hint}", file=sys.stderr)

@@ -10,8 +10,8 @@ Preconditioners, chosen once per solve:
 
 - ``"lines"``: :func:`bem.contact.line_preconditioner.line_preconditioner`, for strongly
   non-symmetric 2-D periodic operators;
-- ``True``: ``R A^-1 R^T``, the exact full-contact inverse (one FFT pair) restricted to ``C``,
-  for large grids, where the restricted system's conditioning grows;
+- ``True``: ``R M R^T``, the operator's (approximate) inverse restricted to ``C``: exact on
+  periodic cells (one FFT pair), the padded periodic cell's on isolated domains;
 - ``False``: none.
 
 Inner solves that stop far above single-precision round-off use the operator's float32 twin
@@ -24,7 +24,25 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import krylov
+from .forcing import TIGHTEN
 from .line_preconditioner import line_preconditioner
+from .operator import SinglePrecision
+
+__all__ = ["InnerSolver", "Problem", "projected", "restricted"]
+
+MAXITER_PER_SQRT_N = 20.0
+"""Cap on one inner solve's products per square root of the grid points: Krylov counts grow
+like sqrt(N) on these operators; a solve that needs more is limited by something else."""
+MAXITER_BASE = 200
+"""... plus this many, so that small grids still get a useful solve."""
+FINAL_ATOL_SHARE = 0.1
+"""Absolute inner tolerance as a share of ``rtol`` times the gap scale: a decade below the outer
+test, so that the settled set's Newton point meets it."""
+ATOL_FLOOR = 1e-3
+"""Lowest share of that tolerance a stalled settled set may tighten to: beyond it only round-off."""
+SINGLE_PRECISION_RTOL = 1e-3
+"""Relative inner tolerance from which float32 products are used: float32 round-off (~1e-7 times
+the conditioning) stays far below it."""
 
 
 @dataclass(frozen=True)
@@ -41,15 +59,6 @@ class Problem:
     h_ref: float
     c: float
     final_atol: float
-
-
-def max_phase(op):
-    """Largest phase ``|arg a_q|`` of the operator's symbol (0 when symmetric)."""
-    if op.is_symmetric:
-        return 0.0
-    if hasattr(op, "max_phase"):  # operators without a Fourier symbol (isolated half-space)
-        return float(op.max_phase())
-    return float(np.max(np.abs(np.angle(op.symbol))))
 
 
 def restricted(apply, idx, shape, project, dtype=float):
@@ -78,44 +87,37 @@ def projected(f):
 
 
 class InnerSolver:
-    """Newton points for one solve: counts its operator products (``matvecs``), keeps the
-    inner tolerance's ``tighten`` factor and the line preconditioner's cache."""
+    """Newton points for one solve. It counts its operator products (``matvecs``) and keeps the
+    line preconditioner's cache of line inverses (while a line's contact is unchanged).
 
-    def __init__(self, op, problem, precondition, options):
-        self.op, self.problem, self.options = op, problem, options
-        single = options.single_precision and hasattr(op, "single_precision")
+    ``precondition``: ``"lines"``, ``True`` or ``False`` (module docstring); ``options`` the
+    solver's :class:`~bem.contact.ContactOptions` (single precision, memory budgets)."""
+
+    def __init__(self, op, precondition, options):
+        self.op, self.options = op, options
+        single = options.single_precision and isinstance(op, SinglePrecision)
         self.single = op.single_precision() if single else op
-        if precondition != "lines":
-            precondition = precondition and hasattr(op, "pressure_from_displacement")
         self.precondition = precondition
-        self.maxiter = int(options.inner_maxiter_per_sqrt_n * np.sqrt(problem.ht.size) + options.inner_maxiter_base)
+        self.maxiter = int(MAXITER_PER_SQRT_N * np.sqrt(op.size) + MAXITER_BASE)
         self.matvecs = 0
-        self.tighten = 1.0
-        self.line_cache = {}  # line inverses, kept while a line's contact is unchanged
+        self.line_cache = {}
 
     def _krylov(self, matvec, b, atol, M):
-        o = self.options
         if self.op.is_symmetric:
             return krylov.cg(matvec, b, atol=atol, maxiter=self.maxiter, M=M)
-        restart = krylov.restart_length(b.size, budget=o.restart_budget, low=o.restart_min, high=o.restart_max)
-        return krylov.gmres(
-            matvec, b, atol=atol, maxiter=self.maxiter, M=M, restart=restart, reorthogonalise=o.reorthogonalise
-        )
+        restart = krylov.restart_length(b.size, budget=self.options.restart_budget)
+        return krylov.gmres(matvec, b, atol=atol, maxiter=self.maxiter, M=M, restart=restart)
 
-    def _preconditioner(self, work, contact, idx):
+    def _preconditioner(self, pb, work, contact, idx):
         """The preconditioner on this set (a counted map), or None."""
-        pb, o = self.problem, self.options
         inverse = None
         if self.precondition == "lines":  # None where the dense line inverses would be too large
-            inverse = line_preconditioner(
-                work, contact, cache=self.line_cache, budget=o.line_budget, chunk=o.line_chunk, dtype=o.line_dtype
-            )
+            inverse = line_preconditioner(work, contact, cache=self.line_cache, budget=self.options.line_budget)
             if inverse is not None and pb.load_control:
                 inverse = projected(inverse)
         elif self.precondition:
-            inverse = restricted(
-                work.pressure_from_displacement, idx, pb.ht.shape, pb.load_control, getattr(work, "dtype", float)
-            )
+            dtype = getattr(work, "dtype", float)
+            inverse = restricted(work.approximate_inverse, idx, pb.ht.shape, pb.load_control, dtype)
         if inverse is None:
             return None
 
@@ -125,21 +127,16 @@ class InnerSolver:
 
         return M
 
-    def _atol(self, norm_b, n, eta):
-        """Absolute inner tolerance; a repeated set (``eta == 0``) whose right-hand side is
-        already under the floor would change nothing, so the floor tightens first."""
-        o, final_atol = self.options, self.problem.final_atol
-        while (
-            eta == 0.0
-            and 0 < norm_b <= final_atol * np.sqrt(n) * self.tighten
-            and (np.sqrt(n) * self.tighten > o.atol_floor)
-        ):
-            self.tighten *= o.inner_tighten
-        return max(final_atol * max(np.sqrt(n) * self.tighten, o.atol_floor), eta * norm_b)
+    @staticmethod
+    def _atol(final_atol, norm_b, n, eta, tighten):
+        """``(absolute inner tolerance, tighten)``; a repeated set (``eta == 0``) whose right-hand
+        side is already under the floor would change nothing, so the floor tightens first."""
+        while eta == 0.0 and 0 < norm_b <= final_atol * np.sqrt(n) * tighten and np.sqrt(n) * tighten > ATOL_FLOOR:
+            tighten *= TIGHTEN
+        return max(final_atol * max(np.sqrt(n) * tighten, ATOL_FLOOR), eta * norm_b), tighten
 
-    def _on_set(self, contact, p):
+    def _on_set(self, pb, contact, p):
         """``p`` restricted to the set (the load rescaled onto it) and its displacement."""
-        pb = self.problem
         p = np.where(contact, p, 0.0)
         if pb.load_control:
             p *= pb.p_ref * p.size / p.sum() if p.sum() > 0 else 0.0
@@ -148,13 +145,15 @@ class InnerSolver:
         self.matvecs += 1
         return p, self.op.displacement(p)
 
-    def newton_point(self, contact, p, u, eta):
-        """Pressure, displacement and approach solving the linear problem on ``contact``,
-        from ``p`` (whose displacement is ``u``, if known), to the forcing term ``eta``."""
-        pb, op = self.problem, self.op
+    def newton_point(self, pb, contact, p, u, eta, tighten=1.0):
+        """``(pressure, displacement, approach, tighten)`` solving the linear problem of ``pb`` (a
+        :class:`Problem`) on ``contact`` from ``p`` (whose displacement is ``u``, if known) to the
+        forcing term ``eta``; ``tighten`` scales the absolute floor of tight solves (``eta == 0``)
+        and comes back as it was used."""
+        op = self.op
         idx = np.flatnonzero(contact)
         if u is None or np.count_nonzero(p) != np.count_nonzero(p.reshape(-1)[idx]):  # p off the set
-            p, u = self._on_set(contact, p)
+            p, u = self._on_set(pb, contact, p)
         else:
             p = p.copy()
         misfit = pb.ht.reshape(-1)[idx] - u.reshape(-1)[idx]
@@ -163,10 +162,10 @@ class InnerSolver:
         if pb.load_control:
             b -= b.mean()
         norm_b = float(np.linalg.norm(b))
-        atol = self._atol(norm_b, idx.size, eta)
-        work = self.single if atol >= self.options.single_precision_rtol * norm_b else op
+        atol, tighten = self._atol(pb.final_atol, norm_b, idx.size, eta, tighten)
+        work = self.single if atol >= SINGLE_PRECISION_RTOL * norm_b else op
         matvec = restricted(work.displacement, idx, pb.ht.shape, pb.load_control, getattr(work, "dtype", float))
-        z, _, k = self._krylov(matvec, b, atol, self._preconditioner(work, contact, idx))
+        z, _, k = self._krylov(matvec, b, atol, self._preconditioner(pb, work, contact, idx))
         self.matvecs += k
         if pb.load_control:
             z -= z.mean()
@@ -175,4 +174,4 @@ class InnerSolver:
         self.matvecs += 1
         if pb.load_control:
             d = float(np.mean(u.reshape(-1)[idx] - pb.ht.reshape(-1)[idx]))
-        return p, u, d
+        return p, u, d, tighten

@@ -16,16 +16,21 @@ corrections, so a warm start is already in its right-hand side.
 
 import numpy as np
 
-TWICE_IS_ENOUGH = 1 / np.sqrt(2)  # default share for a second Gram–Schmidt pass (Kahan–Parlett)
+TWICE_IS_ENOUGH = 1 / np.sqrt(2)
+"""A second Gram–Schmidt pass is made when the first kept less than this share of the vector's
+norm (Kahan–Parlett, "twice is enough"): otherwise one pass is orthogonal to working accuracy."""
+RESTART_MIN = 30
+"""Fewest GMRES basis vectors, whatever the memory budget: shorter restarts stall."""
+RESTART_MAX = 200
+"""Most GMRES basis vectors: orthogonalisation (~4 j n flops at step j) outgrows the products."""
 
 
-def restart_length(n, *, budget=2**26, low=30, high=200):
+def restart_length(n, *, budget):
     """GMRES restart length for systems of ``n`` unknowns: ``budget / n`` basis vectors (the
     basis holds ``budget`` doubles at most and is only touched as far as the solve gets),
-    clipped to ``[low, high]``. Restarts are what make strongly non-symmetric systems slow,
-    so the basis is as long as memory allows; orthogonalisation (~4 j n flops at step j)
-    caps it."""
-    return int(min(high, max(low, budget // max(n, 1))))
+    clipped to ``[RESTART_MIN, RESTART_MAX]``. Restarts are what make strongly non-symmetric
+    systems slow, so the basis is as long as memory allows."""
+    return int(min(RESTART_MAX, max(RESTART_MIN, budget // max(n, 1))))
 
 
 def cg(matvec, b, *, atol, maxiter, M=None):
@@ -59,16 +64,42 @@ def cg(matvec, b, *, atol, maxiter, M=None):
     return x, res, k
 
 
-def gmres(matvec, b, *, atol, maxiter, restart=None, M=None, reorthogonalise=TWICE_IS_ENOUGH):
+def _orthogonalise(V, w, h_column, reorthogonalise):
+    """Classical Gram–Schmidt of ``w`` against the rows of ``V`` (in place), repeated once if it
+    cancelled (Kahan–Parlett "twice is enough"); the coefficients are added to ``h_column``.
+    Returns the norm of what is left."""
+    norm_w = np.linalg.norm(w)
+    for _ in range(2):
+        h = V @ w
+        w -= h @ V
+        h_column += h
+        norm_new = np.linalg.norm(w)
+        if norm_new > reorthogonalise * norm_w:
+            break
+        norm_w = norm_new
+    return norm_new
+
+
+def _rotate(column, cs, sn, j):
+    """Apply the previous Givens rotations to the Hessenberg ``column`` ``j`` and make the one
+    that zeroes its subdiagonal (stored in ``cs[j], sn[j]``)."""
+    for i in range(j):
+        t = cs[i] * column[i] + sn[i] * column[i + 1]
+        column[i + 1] = -sn[i] * column[i] + cs[i] * column[i + 1]
+        column[i] = t
+    den = np.hypot(column[j], column[j + 1])
+    cs[j], sn[j] = (1.0, 0.0) if den == 0 else (column[j] / den, column[j + 1] / den)
+    column[j] = den
+    column[j + 1] = 0.0
+
+
+def gmres(matvec, b, *, atol, maxiter, restart, M=None, reorthogonalise=TWICE_IS_ENOUGH):
     """Restarted GMRES(``restart``) from ``x = 0``; see module docstring.
 
-    ``restart`` defaults to :func:`restart_length` of the system. A second Gram–Schmidt pass
-    is made only when the first kept less than ``reorthogonalise`` of the vector's norm
-    (cancellation); otherwise one pass is orthogonal to working accuracy.
+    A second Gram–Schmidt pass is made only when the first kept less than ``reorthogonalise``
+    of the vector's norm (cancellation; :data:`TWICE_IS_ENOUGH`).
     """
     n = b.size
-    if restart is None:
-        restart = restart_length(n)
     x = np.zeros_like(b)
     r = b.copy()
     beta = float(np.linalg.norm(r))
@@ -86,29 +117,13 @@ def gmres(matvec, b, *, atol, maxiter, restart=None, M=None, reorthogonalise=TWI
         for j in range(m):
             w = matvec(V[j] if M is None else M(V[j]))
             k += 1
-            norm_w = np.linalg.norm(w)
-            for _ in range(2):  # CGS, repeated once if it cancelled (Kahan–Parlett "twice is enough")
-                h = V[: j + 1] @ w
-                w -= h @ V[: j + 1]
-                H[: j + 1, j] += h
-                norm_new = np.linalg.norm(w)
-                if norm_new > reorthogonalise * norm_w:
-                    break
-                norm_w = norm_new
-            H[j + 1, j] = norm_new
+            H[j + 1, j] = _orthogonalise(V[: j + 1], w, H[: j + 1, j], reorthogonalise)
             Hbar[: j + 2, j] = H[: j + 2, j]
             if H[j + 1, j] > 0:
                 V[j + 1] = w / H[j + 1, j]
             else:  # lucky breakdown: the solution lies in the current space
                 V[j + 1] = 0.0
-            for i in range(j):  # apply previous Givens rotations
-                t = cs[i] * H[i, j] + sn[i] * H[i + 1, j]
-                H[i + 1, j] = -sn[i] * H[i, j] + cs[i] * H[i + 1, j]
-                H[i, j] = t
-            den = np.hypot(H[j, j], H[j + 1, j])
-            cs[j], sn[j] = (1.0, 0.0) if den == 0 else (H[j, j] / den, H[j + 1, j] / den)
-            H[j, j] = den
-            H[j + 1, j] = 0.0
+            _rotate(H[:, j], cs, sn, j)
             g[j + 1] = -sn[j] * g[j]
             g[j] = cs[j] * g[j]
             j_done = j + 1

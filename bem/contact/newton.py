@@ -1,10 +1,15 @@
 """The active-set (semismooth Newton) iteration of the contact solver: one attempt.
 
 Each step picks the contact set ``C = {p - c g > 0}`` from the current iterate, computes
-the Newton point on it (:mod:`bem.contact.inner`) and moves toward it; the line search on
-the merit ``||min(p, c g)||**2`` costs no operator product, since pressure, displacement
-and gap are affine along the step. How an attempt steps, tightens and gives up is fixed by
-its :class:`Attempt`; the retry policy between attempts is in :mod:`bem.contact`.
+the Newton point on it (:mod:`bem.contact.inner`) to the forcing term of
+:mod:`bem.contact.forcing`, and moves toward it; the line search on the merit
+``||min(p, c g)||**2`` costs no operator product, since pressure, displacement and gap are
+affine along the step. How an attempt steps and gives up is fixed by its :class:`Attempt`;
+the retry policy between attempts is in :mod:`bem.contact.solver`.
+
+A solve asked for more than round-off allows stops at the floor: once the set has settled and
+the residual no longer falls although it is within :data:`FLOOR_MARGIN` of its round-off floor
+(:func:`roundoff_floor`), the attempt ends and says which residual it attained.
 """
 
 import logging
@@ -12,15 +17,58 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .inner import InnerSolver, Problem, max_phase
+from . import forcing as fc
+from .inner import FINAL_ATOL_SHARE, InnerSolver, Problem
+from .operator import ExactInverse, strongly_nonsymmetric
 from .start import first_iterate, wants_symmetric_start
 
+__all__ = ["Attempt", "ContactSolution", "attempt_solve", "complementarity_residual", "line_search", "roundoff_floor"]
+
 log = logging.getLogger(__name__)
+
+GAP_SCALE = 10.0
+"""The residual's gap scale in one cell's displacement under the mean pressure: larger is cheaper;
+10 keeps the pressure error under 4 rtol on the tested cases (``tests/bem/test_rtol_meaning.py``)."""
+GAP_SCALE_STRONG = 0.3
+"""The same for strongly non-symmetric operators, whose pressure error per gap error is larger."""
+GAP_FLOOR_SHARE = 1e-4
+"""Smallest gap scale as a share of the height range: below it round-off of the gap would stop
+tight solves."""
+SEARCH_DECREASE = 1e-4
+"""Sufficient decrease of the merit for the full step (Armijo): any real decrease is enough."""
+SEARCH_HALVINGS = 12
+"""Step lengths 1/2 ... 1/2**12 tried by the line search: they cost no product; 1/4096 is short enough."""
+ASCENTS = 3
+"""Rising residuals in a row after which a symmetric problem starts damping: plain steps are cycling."""
+STALL_RATIO = 0.5
+"""A settled set whose residual fell by less than this factor tightens the inner solves: they limit it."""
+CYCLING_STEPS = 5
+"""Steps without a new low in set changes after which an attempt that only places the set (the
+symmetric-part start) ends: its set cycles."""
+NESTED_ETA = 0.01
+"""Forcing term of symmetric problems started from the coarser grid, whose set is nearly right:
+Newton's local convergence needs the tighter solves, and looser ones flip points at the margin
+of broad-band contacts."""
+SYMMETRIC_START_RTOL = 1e-3
+"""Residual of the symmetric-part start: it only has to place the set."""
+PRECONDITION_MIN_SIZE = 2**17
+"""Grid points from which the exact full-contact inverse pays its extra FFT pair as a
+preconditioner: smaller restricted systems are well conditioned."""
+FLOOR_MARGIN = 30.0
+"""A residual within this factor of its round-off floor (:func:`roundoff_floor`) that stops
+falling on a settled set is at the floor: the floor is an estimate of the precision of the
+gap and pressure, and the stalled residual measured a few times to tens of times above it."""
+FLOOR_STALLS = 2
+"""Steps at the floor without a new low after which the attempt stops (one may be a late inner
+solve's gain)."""
 
 
 @dataclass(frozen=True)
 class ContactSolution:
-    """Raw output of :func:`bem.contact.solve_contact` (fields shaped like the heights)."""
+    """Raw output of :func:`bem.contact.solve_contact` (fields shaped like the heights).
+
+    ``attainable``: when the solve stopped at its round-off floor, the lowest residual it
+    reached (ask for an ``rtol`` at least this); otherwise ``None``."""
 
     pressure: np.ndarray
     displacement: np.ndarray
@@ -31,23 +79,91 @@ class ContactSolution:
     residual: float
     success: bool
     message: str
+    attainable: float | None = None
 
 
 @dataclass(frozen=True)
 class Attempt:
     """How one attempt iterates. ``precondition``: None (by grid size and phase), True,
-    False or ``"lines"``; ``relax_inner``: loosen the forcing term after full steps;
-    ``stop_when_cycling``: stop once set changes stall (``options.stall_limit``);
+    False or ``"lines"``; ``relax``: loosen the forcing term after full steps (the fast
+    attempt); ``own_forcing``: keep ``eta`` whatever the steps do (the line-preconditioned
+    attempt); ``stop_when_cycling``: only place the set, and stop once its changes stall;
     ``residual_stall``: stop once the residual has had no new low for this many steps;
     ``guard``: take a full step only if it lowers the max-norm residual as well as the merit."""
 
     maxiter: int
-    inner_eta: float
-    relax_inner: bool = True
+    eta: float
+    relax: bool = True
     precondition: object = None
+    own_forcing: bool = False
     stop_when_cycling: bool = False
     residual_stall: int | None = None
     guard: bool = False
+
+
+@dataclass(frozen=True)
+class Iterate:
+    """Pressure (Pa), displacement and gap (m), approach (m), contact set and residual."""
+
+    p: np.ndarray
+    u: np.ndarray
+    g: np.ndarray
+    delta: float
+    contact: np.ndarray
+    residual: float
+
+    def toward(self, other, t, pb):
+        """The iterate a share ``t`` of the way to ``other`` (everything is affine along it)."""
+        if t == 1.0:
+            return other
+        p, u, g = (a + t * (b - a) for a, b in ((self.p, other.p), (self.u, other.u), (self.g, other.g)))
+        residual = complementarity_residual(p, g, pb.p_ref, pb.h_ref)
+        return Iterate(p, u, g, self.delta + t * (other.delta - self.delta), other.contact, residual)
+
+
+@dataclass(frozen=True)
+class SetTrack:
+    """What the set-change detector remembers: the last step's flipped points and their count,
+    the fewest changes so far and the steps since."""
+
+    flips: np.ndarray | None = None
+    changes: int = 0
+    fewest: int | None = None
+    stalled: int = 0
+
+    def after(self, old, new):
+        """``(track, changes, converging)`` after a step from set ``old`` to set ``new``."""
+        flips = new != old
+        changed = int(np.count_nonzero(flips))
+        undone = 0 if self.flips is None else int(np.count_nonzero(flips & self.flips))
+        converging = fc.set_converging(
+            changed, self.changes, undone, decrease=fc.OSCILLATION_DECREASE, settling=fc.SETTLING_CHANGES
+        )
+        if self.fewest is None or changed < self.fewest:
+            fewest, stalled = changed, 0
+        else:
+            fewest, stalled = self.fewest, self.stalled + (changed > 0)
+        return SetTrack(flips, changed, fewest, stalled), changed, converging
+
+
+@dataclass(frozen=True)
+class ResidualTrack:
+    """The lowest residual and the steps since; rising residuals in a row; steps at the floor."""
+
+    lowest: float
+    since_lowest: int = 0
+    ascents: int = 0
+    at_floor: int = 0
+
+    def after(self, previous, residual, *, unchanged, floor):
+        lower = residual < self.lowest
+        stuck = unchanged and not lower and residual <= FLOOR_MARGIN * floor
+        return ResidualTrack(
+            lowest=min(self.lowest, residual),
+            since_lowest=0 if lower else self.since_lowest + 1,
+            ascents=self.ascents + 1 if residual > previous else 0,
+            at_floor=self.at_floor + 1 if stuck else 0,
+        )
 
 
 def complementarity_residual(p, g, p_ref, h_ref):
@@ -59,10 +175,19 @@ def complementarity_residual(p, g, p_ref, h_ref):
     return float(max(m.max(), -m.min())) / p_ref
 
 
-def line_search(p, g, p_new, g_new, c, *, full, decrease, halvings):
+def roundoff_floor(pb, it):
+    """Round-off floor of the residual at iterate ``it``: the spacing of floating-point numbers
+    at the size of the gap's terms (heights, displacement, approach) over ``h_ref``, and at the
+    size of the largest pressure over ``p_ref``."""
+    eps = np.finfo(float).eps
+    gap_terms = max(float(np.max(np.abs(pb.ht))), float(np.max(np.abs(it.u))), abs(it.delta))
+    return eps * (gap_terms / pb.h_ref + float(np.max(np.abs(it.p))) / pb.p_ref)
+
+
+def line_search(p, g, p_new, g_new, c, *, full):
     """Step ``t`` in (0, 1] that (nearly) minimises the merit ``||min(p, c g)||**2`` along the
     segment from ``(p, g)`` to ``(p_new, g_new)``: the full step if allowed (``full``) and it
-    lowers the merit by the share ``decrease``, else the best of ``1/2 ... 1/2**halvings``."""
+    lowers the merit by the share :data:`SEARCH_DECREASE`, else the best of ``1/2 ... 1/2**k``."""
     # only points with pressure or negative gap at either end can contribute
     live = ((p != 0) | (p_new != 0) | (g < 0) | (g_new < 0)).reshape(-1)
     p0, g0 = p.reshape(-1)[live], g.reshape(-1)[live]
@@ -73,20 +198,20 @@ def line_search(p, g, p_new, g_new, c, *, full, decrease, halvings):
         return float(np.dot(f, f))
 
     m0 = merit(0.0)
-    if full and merit(1.0) <= (1 - decrease) * m0:
+    if full and merit(1.0) <= (1 - SEARCH_DECREASE) * m0:
         return 1.0
-    ts = 0.5 ** np.arange(1, halvings + 1)
+    ts = 0.5 ** np.arange(1, SEARCH_HALVINGS + 1)
     values = [merit(t) for t in ts]
     k = int(np.argmin(values))
     return float(ts[k]) if values[k] < m0 else float(ts[-1])
 
 
-def problem_scales(op, heights, mean_pressure, approach, rtol, options, *, strong, p_mean=None):
+def problem_scales(op, heights, mean_pressure, approach, rtol, *, strong, p_mean=None):
     """The scaled :class:`~bem.contact.inner.Problem`: ``p_ref`` the mean pressure (under
     displacement control ``p_mean``, that of the first Newton point, once known) and ``h_ref =
-    gap_scale a0 p_ref``, ``gap_scale`` times the displacement of one cell under it
-    (``gap_scale_strong`` for strongly non-symmetric operators, ``strong``), kept between
-    ``gap_floor_share`` of the surface's height range and that range (near full contact of
+    GAP_SCALE a0 p_ref``, the displacement of :data:`GAP_SCALE` cells under it
+    (:data:`GAP_SCALE_STRONG` for strongly non-symmetric operators, ``strong``), held between
+    :data:`GAP_FLOOR_SHARE` of the surface's height range and that range (near full contact of
     soft solids)."""
     ht = heights - heights.max()
     load_control = mean_pressure is not None
@@ -97,10 +222,10 @@ def problem_scales(op, heights, mean_pressure, approach, rtol, options, *, stron
         p_ref = float(p_mean)
     else:  # before the first iterate: the pressure that pushes one cell by the approach
         p_ref = max(float(approach), np.ptp(ht) * 1e-3) / a0
-    h_ref = (options.gap_scale_strong if strong else options.gap_scale) * a0 * p_ref
+    h_ref = (GAP_SCALE_STRONG if strong else GAP_SCALE) * a0 * p_ref
     ptp = float(np.ptp(ht))
-    if ptp > 0:  # between round-off of the heights and their range (see ContactOptions)
-        h_ref = min(max(h_ref, options.gap_floor_share * ptp), ptp)
+    if ptp > 0:  # between round-off of the heights and their range
+        h_ref = min(max(h_ref, GAP_FLOOR_SHARE * ptp), ptp)
     return Problem(
         ht=ht,
         load_control=load_control,
@@ -108,175 +233,127 @@ def problem_scales(op, heights, mean_pressure, approach, rtol, options, *, stron
         p_ref=p_ref,
         h_ref=h_ref,
         c=1.0 / a0,
-        final_atol=options.final_atol_share * rtol * h_ref,
+        final_atol=FINAL_ATOL_SHARE * rtol * h_ref,
     )
 
 
-class ActiveSet:
-    """One attempt's iteration state; :meth:`run` iterates and returns the solution."""
+class _Run:
+    """The fixed parts of one attempt: operator, problem, inner solver, attempt, tolerance."""
 
-    def __init__(self, op, pb, inner, attempt, rtol, options):
-        self.op, self.pb, self.inner, self.attempt, self.rtol, self.o = op, pb, inner, attempt, rtol, options
-        self.eta = attempt.inner_eta  # forcing term: tightened whenever a step had to be damped
-        self.eta_max = attempt.inner_eta  # ... and for good once the set oscillates
-        self.flips, self.changes = None, 0  # the points whose set membership the last step changed, and their count
-        self.damped, self.ascents = not op.is_symmetric, 0
-        self.fewest_changes, self.stalled = None, 0
+    def __init__(self, op, pb, inner, attempt, rtol):
+        self.op, self.pb, self.inner, self.attempt, self.rtol = op, pb, inner, attempt, rtol
 
-    def start(self, p, contact):
-        self.p, self.u, self.delta = self.inner.newton_point(contact, p, None, self.eta)
-        self.g = self.u - self.pb.ht - self.delta
-        self.contact = contact
-        self.residual = complementarity_residual(self.p, self.g, self.pb.p_ref, self.pb.h_ref)
-        self.outer = 1
-        self.lowest, self.since_lowest = self.residual, 0
-
-    def rescale(self, pb):
-        """Use the scales of ``pb`` from here on."""
-        self.pb = self.inner.problem = pb
-        self.residual = self.lowest = complementarity_residual(self.p, self.g, pb.p_ref, pb.h_ref)
-
-    def _go_on(self):
-        a = self.attempt
-        if not self.residual > self.rtol or self.outer >= a.maxiter:
-            return False
-        if a.stop_when_cycling and self.stalled >= self.o.stall_limit:
-            return False
-        return a.residual_stall is None or self.since_lowest < a.residual_stall
-
-    def _count_changes(self, new):
-        """``(changes, converging)``: the set changes, and whether the set is still converging;
-        cycling counts steps without a new low in set changes.
-
-        Not converging: a step changes more than ``oscillation_decrease`` of the last step's
-        changes, and either more than the last step (the set diverges) or mostly by undoing
-        it (it oscillates); counts below ``tighten_changes`` are a settling set's and pass."""
-        flips = new != self.contact
-        changed = np.count_nonzero(flips)
-        undone = 0 if self.flips is None else np.count_nonzero(flips & self.flips)
-        before, self.flips, self.changes = self.changes, flips, changed
-        if self.fewest_changes is None or changed < self.fewest_changes:
-            self.fewest_changes, self.stalled = changed, 0
-        elif changed:
-            self.stalled += 1
-        slow = before and changed > self.o.oscillation_decrease * before and changed > self.o.tighten_changes
-        return changed, not (slow and (changed > before or 2 * undone > changed))
-
-    def _step_length(self, changed, p_new, g_new, residual_new):
-        """Non-symmetric problems are damped by the line search; symmetric ones take plain
-        active-set steps unless the residual rises ``ascents`` times running. An unchanged set
-        (the same system solved more accurately) always takes the full step."""
-        t = 1.0
-        if changed and self.damped:
-            full = residual_new <= self.residual or not self.attempt.guard
-            t = line_search(
-                self.p,
-                self.g,
-                p_new,
-                g_new,
-                self.pb.c,
-                full=full,
-                decrease=self.o.search_decrease,
-                halvings=self.o.search_halvings,
-            )
-        self.ascents = self.ascents + 1 if residual_new > self.residual else 0
-        self.damped = self.damped or self.ascents >= self.o.ascents
-        return t
-
-    def _adapt_eta(self, t, changed, converging, new):
-        """A damped step on a nearly settled set: the inner solves were too loose; a full step:
-        loosen them again (fast attempt). Earlier, damping comes from the set itself. Once the
-        set stops converging the forcing term drops a decade, once, for the rest of the attempt:
-        the Newton points' errors flip points at the margin of the contact, and broad-band
-        roughness has many. The line-preconditioned attempt keeps its own tight forcing term;
-        the symmetric-part start only places the set, and its own cycling ends it."""
-        o = self.o
-        settled = changed <= max(o.tighten_changes, o.tighten_share * np.count_nonzero(new))
-        own = self.inner.precondition != "lines" and not self.attempt.stop_when_cycling
-        if not converging and own and self.eta_max == self.attempt.inner_eta:
-            self.eta = self.eta_max = max(o.inner_tighten * self.eta_max, o.inner_eta_min)
-        elif t < 1.0 and self.inner.precondition != "lines" and settled:
-            self.eta = max(o.inner_tighten * self.eta, o.inner_eta_min)
-        elif self.attempt.relax_inner:
-            self.eta = min(self.eta_max, o.inner_relax * self.eta)
-
-    def step(self):
+    def point(self, contact, it, eta, tighten):
+        """The Newton point on ``contact`` from ``it`` as an :class:`Iterate`, and ``tighten``."""
         pb = self.pb
-        self.outer += 1
-        new = np.greater(self.p, pb.c * self.g)  # p - c g > 0
-        if not new.any():
-            new = self.g == self.g.min()
-        changed, converging = self._count_changes(new)
-        # inexact Newton: loose inner solves while the set changes, tight once it has settled
-        p_new, u_new, d_new = self.inner.newton_point(new, self.p, self.u, self.eta if changed else 0.0)
-        g_new = u_new - pb.ht - d_new
-        residual_new = complementarity_residual(p_new, g_new, pb.p_ref, pb.h_ref)
-        t = self._step_length(changed, p_new, g_new, residual_new)
-        self._adapt_eta(t, changed, converging, new)
-        if t == 1.0:
-            self.p, self.u, self.g, self.delta = p_new, u_new, g_new, d_new
-        else:  # damped step: everything is affine along the segment
-            self.p = self.p + t * (p_new - self.p)
-            self.u = self.u + t * (u_new - self.u)
-            self.g = self.g + t * (g_new - self.g)
-            self.delta += t * (d_new - self.delta)
-        self.contact = new
-        previous = self.residual
-        self.residual = residual_new if t == 1.0 else complementarity_residual(self.p, self.g, pb.p_ref, pb.h_ref)
-        if self.residual < self.lowest:
-            self.lowest, self.since_lowest = self.residual, 0
-        else:
-            self.since_lowest += 1
-        if not changed and self.residual > self.o.stall_ratio * previous:
-            self.inner.tighten *= self.o.inner_tighten  # settled but stalled: inner accuracy too low
-        if log.isEnabledFor(logging.DEBUG):
-            log.debug(
-                "active set %d: %d changes%s, step %.3g, residual %.3e, contact %.4f, %d products",
-                self.outer,
-                changed,
-                "" if converging else " (not converging)",
-                t,
-                self.residual,
-                np.mean(self.p > 0),
-                self.inner.matvecs,
-            )
+        p, u, d, tighten = self.inner.newton_point(pb, contact, it.p, it.u, eta, tighten)
+        g = u - pb.ht - d
+        return Iterate(p, u, g, d, contact, complementarity_residual(p, g, pb.p_ref, pb.h_ref)), tighten
 
-    def run(self):
-        while self._go_on():
-            self.step()
-        p = np.maximum(self.p, 0.0)
-        if self.pb.load_control and p.sum() > 0:
-            p *= self.pb.p_ref * p.size / p.sum()
-        success = self.residual <= self.rtol
-        state, rel = ("converged", "<=") if success else ("not converged", ">")
-        message = (
-            f"{state}: complementarity residual {self.residual:.2e} {rel} rtol {self.rtol:.1e} after "
-            f"{self.outer} active-set iterations ({self.inner.matvecs} operator products)"
+    def step_length(self, it, new, changed, damped):
+        """Non-symmetric problems are damped by the line search (guarded: the full step only if it
+        also lowers the max-norm residual); an unchanged set, the same system solved more
+        accurately, always takes the full step."""
+        if not (changed and damped):
+            return 1.0
+        full = new.residual <= it.residual or not self.attempt.guard
+        return line_search(it.p, it.g, new.p, new.g, self.pb.c, full=full)
+
+    def go_on(self, it, outer, sets, residuals):
+        a = self.attempt
+        if not it.residual > self.rtol or outer >= a.maxiter or residuals.at_floor >= FLOOR_STALLS:
+            return False
+        if a.stop_when_cycling and sets.stalled >= CYCLING_STEPS:
+            return False
+        return a.residual_stall is None or residuals.since_lowest < a.residual_stall
+
+
+def _iterate(run, it):
+    """The active-set loop from the first Newton point ``it``; returns the last iterate, its
+    step count and the residual track."""
+    a = run.attempt
+    eta = fc.Forcing.at(a.eta)
+    sets, residuals = SetTrack(), ResidualTrack(it.residual)
+    damped, tighten, outer = not run.op.is_symmetric, 1.0, 1
+    while run.go_on(it, outer, sets, residuals):
+        outer += 1
+        contact = np.greater(it.p, run.pb.c * it.g)  # p - c g > 0
+        if not contact.any():
+            contact = it.g == it.g.min()
+        sets, changed, converging = sets.after(it.contact, contact)
+        # inexact Newton: loose inner solves while the set changes, tight once it has settled
+        new, tighten = run.point(contact, it, eta.eta if changed else 0.0, tighten)
+        t = run.step_length(it, new, changed, damped)
+        eta = fc.next_forcing(
+            eta,
+            damped=t < 1.0,
+            settled=fc.settled(
+                changed, np.count_nonzero(contact), changes=fc.SETTLING_CHANGES, share=fc.SETTLING_SHARE
+            ),
+            converging=converging,
+            relax=a.relax,
+            oscillation=not (a.own_forcing or a.stop_when_cycling),
+            damping=not a.own_forcing,
         )
-        return ContactSolution(
-            p, self.u, self.g, self.delta, self.outer, self.inner.matvecs, self.residual, success, message
+        previous, it = it.residual, it.toward(new, t, run.pb)
+        residuals = residuals.after(previous, it.residual, unchanged=not changed, floor=roundoff_floor(run.pb, it))
+        damped = damped or residuals.ascents >= ASCENTS
+        if not changed and it.residual > STALL_RATIO * previous:
+            tighten *= fc.TIGHTEN  # settled but stalled: the inner accuracy limits the residual
+        _log_step(outer, changed, converging, t, it, run.inner.matvecs)
+    return it, outer, residuals
+
+
+def _log_step(outer, changed, converging, t, it, matvecs):
+    if log.isEnabledFor(logging.DEBUG):
+        log.debug(
+            "active set %d: %d changes%s, step %.3g, residual %.3e, contact %.4f, %d products",
+            outer,
+            changed,
+            "" if converging else " (not converging)",
+            t,
+            it.residual,
+            np.mean(it.p > 0),
+            matvecs,
         )
+
+
+def _solution(run, it, outer, residuals):
+    """The :class:`ContactSolution` of the last iterate: ``p >= 0``, the load rescaled."""
+    pb, rtol = run.pb, run.rtol
+    p = np.maximum(it.p, 0.0)
+    if pb.load_control and p.sum() > 0:
+        p *= pb.p_ref * p.size / p.sum()
+    success = it.residual <= rtol
+    state, rel = ("converged", "<=") if success else ("not converged", ">")
+    message = (
+        f"{state}: complementarity residual {it.residual:.2e} {rel} rtol {rtol:.1e} after "
+        f"{outer} active-set iterations ({run.inner.matvecs} operator products)"
+    )
+    attainable = None
+    if not success and residuals.at_floor >= FLOOR_STALLS:
+        attainable = residuals.lowest
+        message += (
+            f"; the residual stopped falling near its round-off floor (about {roundoff_floor(pb, it):.1e}): "
+            f"{attainable:.2e} is what this problem attains, ask for rtol >= {attainable:.1e}"
+        )
+    return ContactSolution(p, it.u, it.g, it.delta, outer, run.inner.matvecs, it.residual, success, message, attainable)
 
 
 def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, options, initial=None, initial_approach=None):
     """One attempt of the active-set iteration (never raises; see :class:`Attempt`)."""
-    strongly_nonsymmetric = max_phase(op) > options.strong_phase
-    pb = problem_scales(op, heights, mean_pressure, approach, rtol, options, strong=strongly_nonsymmetric)
-    precondition = attempt.precondition
-    if precondition is None:
-        precondition = options.precondition
-    if precondition is None:  # elsewhere it costs more products than it saves
-        precondition = pb.ht.size >= options.precondition_min_size and not strongly_nonsymmetric
-    inner = InnerSolver(op, pb, precondition, options)
+    strong = strongly_nonsymmetric(op)
+    pb = problem_scales(op, heights, mean_pressure, approach, rtol, strong=strong)
+    inner = InnerSolver(op, _preconditioner(op, pb, attempt, options, strong), options)
 
     def solve_symmetric():  # a robust CG solve that puts the set near its place
-        sym = Attempt(maxiter=attempt.maxiter, inner_eta=options.inner_eta, precondition=False, stop_when_cycling=True)
+        sym = Attempt(maxiter=attempt.maxiter, eta=options.inner_eta, precondition=False, stop_when_cycling=True)
         return attempt_solve(
             op.symmetric_part(),
             heights,
             mean_pressure=mean_pressure,
             approach=approach,
-            rtol=max(rtol, options.symmetric_start_rtol),
+            rtol=max(rtol, SYMMETRIC_START_RTOL),
             attempt=sym,
             options=options,
         )
@@ -287,18 +364,26 @@ def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, option
         initial=initial,
         initial_approach=initial_approach,
         solve_symmetric=solve_symmetric,
-        symmetric_start=wants_symmetric_start(op, pb.ht, strongly_nonsymmetric, options),
-        options=options,
+        symmetric_start=wants_symmetric_start(op, pb.ht, strong, options),
     )
     if initial_approach is not None and initial is not None and op.is_symmetric:
         # nested iteration: the set is nearly right, Newton's local convergence needs tight solves
-        attempt = replace(attempt, inner_eta=min(attempt.inner_eta, options.nested_eta))
-    it = ActiveSet(op, pb, inner, attempt, rtol, options)
-    it.start(p, contact)
-    if not pb.load_control and it.p.mean() > 0:  # displacement control: now the mean pressure is known
-        it.rescale(
-            problem_scales(
-                op, heights, mean_pressure, approach, rtol, options, strong=strongly_nonsymmetric, p_mean=it.p.mean()
-            )
-        )
-    return it.run()
+        attempt = replace(attempt, eta=min(attempt.eta, NESTED_ETA))
+    p, u, d, _ = inner.newton_point(pb, contact, p, None, attempt.eta)
+    if not pb.load_control and p.mean() > 0:  # displacement control: now the mean pressure is known
+        pb = problem_scales(op, heights, mean_pressure, approach, rtol, strong=strong, p_mean=p.mean())
+    g = u - pb.ht - d
+    first = Iterate(p, u, g, d, contact, complementarity_residual(p, g, pb.p_ref, pb.h_ref))
+    run = _Run(op, pb, inner, attempt, rtol)
+    return _solution(run, *_iterate(run, first))
+
+
+def _preconditioner(op, pb, attempt, options, strong):
+    """The attempt's preconditioner: its own choice, else the options', else by operator:
+    an approximate inverse (isolated domains) always pays; an exact one on large grids of
+    operators that are not strongly non-symmetric (elsewhere it costs more than it saves)."""
+    choice = attempt.precondition if attempt.precondition is not None else options.precondition
+    if choice is None:
+        approximate_only = not isinstance(op, ExactInverse)
+        choice = approximate_only or (pb.ht.size >= PRECONDITION_MIN_SIZE and not strong)
+    return choice

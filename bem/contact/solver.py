@@ -23,7 +23,8 @@ which costs no product (:mod:`bem.contact.newton`).
   which takes any warm start (kept where nearer the answer, :mod:`bem.contact.start`).
 - Retry (:func:`solve_contact`): a fast attempt, then one whose inner tolerances only
   tighten; strongly non-symmetric 2-D operators first try the line preconditioner.
-Every tunable is a field of :class:`ContactOptions`, with what it trades and why.
+What a user may set is a field of :class:`ContactOptions`; every other constant is named in
+the module that uses it, with its reason (``docs/theory.md`` §4.2 lists them all).
 
 Convergence test, stated exactly: success when ``r = max_i |min(p_i / p_ref, g_i / h_ref)|
 <= rtol`` (``r = 0`` iff the contact conditions hold), with ``p_ref`` the mean pressure and
@@ -45,18 +46,31 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from ..errors import ConvergenceError, InputError
-from .inner import max_phase
+from ..parallel import blas_limit
 from .newton import Attempt, ContactSolution, attempt_solve, complementarity_residual
-from .options import ContactOptions
-from .start import coarse_start, prolong, restrict
+from .operator import LineFactors, strongly_nonsymmetric
+from .options import MAXITER, RTOL, ContactOptions
+from .start import COARSE_RTOL, coarse_start, nearer, wants_coarse_start
 
 __all__ = ["ContactOptions", "ContactSolution", "complementarity_residual", "solve_contact"]
 
 log = logging.getLogger(__name__)
 DEFAULT_OPTIONS = ContactOptions()
+
+FAST_SHARE = 0.5
+"""Share of ``maxiter`` for the fast attempt (inner tolerances relax again after full steps)
+before the careful one, whose inner tolerances only tighten."""
+LINES_ETA = 0.01
+"""Forcing term of the line-preconditioned attempt: looser Newton points send fine grids into
+long damped runs."""
+LINES_MAXITER_SHARE = 0.5
+"""Share of ``maxiter`` the line-preconditioned attempt may take, leaving the rest to the
+unpreconditioned one."""
+LINES_RESIDUAL_STALL = 30
+"""Steps without a new low in the residual that end the line-preconditioned attempt (it cycles
+on some near-full contacts)."""
 
 
 def solve_contact(
@@ -65,8 +79,8 @@ def solve_contact(
     *,
     mean_pressure=None,
     approach=None,
-    rtol=1e-8,
-    maxiter=400,
+    rtol=RTOL,
+    maxiter=MAXITER,
     initial=None,
     raise_on_failure=True,
     options=DEFAULT_OPTIONS,
@@ -75,12 +89,9 @@ def solve_contact(
 
     Parameters
     ----------
-    op : bem.halfspace.periodic.PeriodicHalfSpace or compatible
-        Provides ``displacement(p)``, ``self_influence()``, ``is_symmetric``,
-        ``symmetric_part()``, and either ``pressure_from_displacement(u)`` (exact full-contact
-        inverse) or ``initial_pressure(ht, mean_pressure=, approach=)``; optionally
-        ``max_phase()`` instead of a Fourier ``symbol``, ``coarsened()``,
-        ``single_precision()`` and ``factors_along_x``.
+    op : bem.contact.operator.ResponseOperator
+        The response operator (:mod:`bem.halfspace`); its optional capabilities
+        (:mod:`bem.contact.operator`) choose the start and the preconditioner.
     heights : ndarray
         Indenter heights (m), positive toward the half-space.
     mean_pressure : float, optional
@@ -97,63 +108,62 @@ def solve_contact(
         Raise :class:`bem.errors.ConvergenceError` if the tolerance is not reached;
         otherwise return the solution with ``success=False``.
     options : ContactOptions
-        The solver's tunables.
+        What a user may set (:class:`ContactOptions`).
 
     Returns
     -------
     ContactSolution
         ``matvecs`` counts operator products (one FFT pair each, preconditioner
-        applications included), coarser grids' at their share of grid points.
+        applications included), coarser grids' at their share of grid points. A solve
+        stopped at its round-off floor gives the residual it attained (``attainable``).
     """
     if (mean_pressure is None) == (approach is None):
         raise InputError(f"give exactly one of mean_pressure and approach, got {mean_pressure!r} and {approach!r}")
     if not isinstance(options, ContactOptions):
         raise InputError(f"options must be a bem.contact.ContactOptions, got {type(options).__name__}")
     problem = {"mean_pressure": mean_pressure, "approach": approach, "rtol": rtol, "options": options}
-    # BLAS is single-threaded: its calls here are small (GMRES's Hessenberg, the line
-    # preconditioner's batches, which run on the FFT's cores themselves)
-    with threadpool_limits(limits=1, user_api="blas"):
+    with blas_limit():  # small dense calls (bem.parallel)
         coarse_matvecs, initial_approach = 0.0, None
-        if options.coarsen and (initial is None or options.coarsen_warm):
-            warm = None if initial is None else np.asarray(initial, dtype=float)
-
-            def solve_coarse(coarse_op, coarse_heights):
-                return solve_contact(
-                    coarse_op,
-                    coarse_heights,
-                    mean_pressure=mean_pressure,
-                    approach=approach,
-                    rtol=max(rtol, options.coarse_rtol),
-                    maxiter=maxiter,
-                    initial=None if warm is None else restrict(warm),
-                    raise_on_failure=False,
-                    options=options,
-                )
-
-            coarse, coarse_matvecs, coarse_approach = coarse_start(op, heights, solve_coarse, options.coarsen_min_size)
-            if coarse is not None and (warm is None or _set_changes(warm, coarse) > _interpolation_changes(warm)):
+        if (initial is None or options.coarsen_warm) and wants_coarse_start(op, heights, mean_pressure, options):
+            coarse, coarse_matvecs, coarse_approach = _coarse(op, heights, maxiter, initial, problem)
+            if coarse is not None and (initial is None or not nearer(op, np.asarray(initial, dtype=float), coarse)):
                 initial, initial_approach = coarse, coarse_approach
         sol = _retry_policy(op, heights, maxiter, dict(problem, initial=initial, initial_approach=initial_approach))
     if coarse_matvecs:
         sol = replace(
             sol,
             matvecs=sol.matvecs + int(np.ceil(coarse_matvecs)),
-            message=sol.message[:-1] + f" on this grid, plus {coarse_matvecs:.1f} on "
-            "coarser grids counted at their share of points)",
+            message=sol.message.replace(
+                " operator products)",
+                f" operator products on this grid, plus {coarse_matvecs:.1f} on coarser grids counted at their "
+                "share of points)",
+                1,
+            ),
         )
     if not sol.success and raise_on_failure:
         raise ConvergenceError(sol.message, sol)
     return sol
 
 
-def _set_changes(warm, coarse):
-    """Contact points (fine-grid count) where the warm start's set differs from the new coarse solution's."""
-    return 2**warm.ndim * np.count_nonzero(restrict(warm > 0) != restrict(coarse > 0))
+def _coarse(op, heights, maxiter, initial, problem):
+    """:func:`~bem.contact.start.coarse_start`: the same problem on the coarser grid, from the warm
+    start sampled there, to the coarse tolerance."""
+    warm = None if initial is None else op.restrict(np.asarray(initial, dtype=float))
 
+    def solve_coarse(coarse_op, coarse_heights):
+        return solve_contact(
+            coarse_op,
+            coarse_heights,
+            mean_pressure=problem["mean_pressure"],
+            approach=problem["approach"],
+            rtol=max(problem["rtol"], COARSE_RTOL),
+            maxiter=maxiter,
+            initial=warm,
+            raise_on_failure=False,
+            options=problem["options"],
+        )
 
-def _interpolation_changes(warm):
-    """Contact points the round trip through the coarse grid moves: what the coarse start costs the set."""
-    return np.count_nonzero((prolong(restrict(warm)) > 0) != (warm > 0))
+    return coarse_start(op, heights, solve_coarse)
 
 
 def _retry_policy(op, heights, maxiter, problem):
@@ -163,36 +173,31 @@ def _retry_policy(op, heights, maxiter, problem):
     that only tighten); on 2-D periodic grids they first try the line preconditioner, with
     steps guarded by the max-norm residual, and give up on it once its residual stalls or
     its share of ``maxiter`` is spent. Others try the fast attempt (inner tolerances relaxed
-    again after full steps) for ``options.fast_share`` of ``maxiter``."""
+    again after full steps) for :data:`FAST_SHARE` of ``maxiter``."""
     o = problem["options"]
-    careful = max_phase(op) > o.strong_phase
-    if careful and o.lines and o.precondition is None and getattr(op, "factors_along_x", False):
+    careful = strongly_nonsymmetric(op)
+    if careful and o.lines and o.precondition is None and isinstance(op, LineFactors) and op.factors_along_x:
         lines = Attempt(
-            maxiter=max(1, int(o.lines_maxiter_share * maxiter)),
-            inner_eta=o.lines_eta,
-            relax_inner=False,
+            maxiter=max(1, int(LINES_MAXITER_SHARE * maxiter)),
+            eta=LINES_ETA,
+            relax=False,
             precondition="lines",
-            residual_stall=o.residual_stall,
+            own_forcing=True,
+            residual_stall=LINES_RESIDUAL_STALL,
             guard=True,
         )
         first = attempt_solve(op, heights, attempt=lines, **problem)
-        if first.success or maxiter < 2:
+        if first.success or first.attainable is not None or maxiter < 2:
             return first
         log.info("retrying without the line preconditioner: %s", first.message)
-        second = Attempt(
-            maxiter=max(1, maxiter - first.iterations), inner_eta=o.inner_eta, relax_inner=False, guard=True
-        )
+        second = Attempt(maxiter=max(1, maxiter - first.iterations), eta=o.inner_eta, relax=False, guard=True)
         return _after(first, attempt_solve(op, heights, attempt=second, **problem))
-    fast = Attempt(
-        maxiter=maxiter if careful else math.ceil(o.fast_share * maxiter),
-        inner_eta=o.inner_eta,
-        relax_inner=not careful,
-    )
+    fast = Attempt(maxiter=maxiter if careful else math.ceil(FAST_SHARE * maxiter), eta=o.inner_eta, relax=not careful)
     first = attempt_solve(op, heights, attempt=fast, **problem)
-    if first.success or maxiter < 2 or careful:
+    if first.success or first.attainable is not None or maxiter < 2 or careful:
         return first
     log.info("retrying with monotone inner tolerances: %s", first.message)
-    second = Attempt(maxiter=maxiter - first.iterations, inner_eta=o.inner_eta, relax_inner=False)
+    second = Attempt(maxiter=maxiter - first.iterations, eta=o.inner_eta, relax=False)
     return _after(first, attempt_solve(op, heights, attempt=second, **problem))
 
 

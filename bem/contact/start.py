@@ -2,68 +2,99 @@
 
 In order of preference:
 
-1. on large periodic grids with even sides, the same problem solved on the grid with half
-   the points per axis (itself warm-started from the caller's warm start, sampled there) and
-   interpolated linearly (nested iteration, :func:`coarse_start`); the first contact set is
-   then the one a Newton step would pick from that pressure and its gap at the coarse
-   approach, ``p - c g > 0`` (interpolation makes the pressure positive around every coarse
-   contact point). A warm start is kept instead when, sampled on the coarse grid, its contact
-   set differs from the coarse solution's at fewer points than the round trip through the
-   coarse grid moves its own set: then it is the nearer of the two (along a friction curve,
-   where the contact changes little between neighbouring speeds);
+1. the same problem solved on the grid with half the points per axis (nested iteration,
+   :func:`coarse_start`), itself warm-started from the caller's warm start sampled there, and
+   interpolated back (:class:`~bem.contact.operator.Coarsening`): on large grids (from
+   :data:`COARSEN_MIN_SIZE` points), and for strongly non-symmetric operators down to
+   :data:`COARSEN_MIN_SIZE_STRONG` points unless the clipped full-contact pressure is nearly the
+   answer. The first contact set is then the one a Newton step would pick from that pressure and
+   its gap at the coarse approach, ``p - c g > 0``. A warm start is kept instead when, sampled on
+   the coarse grid, its contact set differs from the coarse solution's at fewer points than the
+   round trip through the coarse grid moves its own set (:func:`nearer`): then it is the nearer
+   of the two (along a friction curve, where the contact changes little between neighbouring
+   speeds);
 2. a warm start given by the caller (e.g. the solution at a neighbouring speed);
-3. for strongly non-symmetric operators (and non-symmetric 1-D ones, where smooth
-   indenters on long cells need it), the contact of the operator's symmetric part, a
-   robust CG solve stopped once its set cycles, unless under load control the clipped
-   full-contact pressure is nearly the answer;
-4. the operator's own first iterate (``op.initial_pressure``, isolated half-spaces);
-5. the full-contact solution (exact in Fourier space) clipped to ``p >= 0``.
+3. under load control, the clipped full-contact pressure when it is nearly the answer (tension
+   on less than :data:`NEAR_FULL_CONTACT` of the cell);
+4. for strongly non-symmetric operators (and non-symmetric 1-D ones, where smooth indenters on
+   long cells need it), the contact of the operator's symmetric part, a robust CG solve stopped
+   once its set cycles;
+5. the operator's own first iterate (:class:`~bem.contact.operator.OwnStart`, isolated domains);
+6. the full-contact solution (exact in Fourier space) clipped to ``p >= 0``.
+
+Why the nested start pays for strongly non-symmetric operators at any size: their Newton point on
+a set that reaches past the answer puts a tension spike on the outermost cell of a contact edge
+alone (the material ahead of the edge responds with its glassy modulus), so the edge retreats by
+about a cell per step; the coarse grid brings it within a cell or two first.
 """
 
 import logging
 
 import numpy as np
 
+from .operator import Coarsening, ExactInverse, OwnStart, strongly_nonsymmetric
+
+__all__ = [
+    "COARSEN_MIN_SIZE",
+    "COARSEN_MIN_SIZE_STRONG",
+    "COARSE_RTOL",
+    "NEAR_FULL_CONTACT",
+    "coarse_start",
+    "first_iterate",
+    "nearer",
+    "wants_coarse_start",
+    "wants_symmetric_start",
+]
+
 log = logging.getLogger(__name__)
 
-
-def prolong(p):
-    """Periodic linear interpolation from a grid to the one with twice the points per axis
-    (coarse point ``i`` sits on fine point ``2i``); keeps ``p >= 0`` and the mean."""
-    for axis in range(p.ndim):
-        mid = 0.5 * (p + np.roll(p, -1, axis=axis))
-        shape = list(p.shape)
-        shape[axis] *= 2
-        fine = np.empty(shape)
-        index = [slice(None)] * p.ndim
-        index[axis] = slice(0, None, 2)
-        fine[tuple(index)] = p
-        index[axis] = slice(1, None, 2)
-        fine[tuple(index)] = mid
-        p = fine
-    return p
+COARSEN_MIN_SIZE = 2**18
+"""Grid points from which the coarse start pays for operators that are not strongly
+non-symmetric: below it their first set is cheap to find anyway."""
+COARSEN_MIN_SIZE_STRONG = 128
+"""The same for strongly non-symmetric operators, whose contact edges move a cell per step on
+any grid (module docstring); below it the coarse problem no longer resembles the fine one."""
+COARSE_RTOL = 1e-4
+"""Residual of the coarse solve (at least the caller's rtol): interpolation error dominates anyway."""
+NEAR_FULL_CONTACT = 0.1
+"""Tension share under which the clipped full-contact pressure is the start (it is nearly the answer)."""
 
 
-def restrict(p):
-    """The values at the points of the grid with half the points per axis (coarse point ``i``
-    is fine point ``2i``, as in :func:`prolong`)."""
-    return np.ascontiguousarray(p[tuple(slice(0, None, 2) for _ in p.shape)])
+def full_contact_pressure(op, ht, mean_pressure):
+    """Under load control (``mean_pressure``, Pa) with an exact inverse, the full-contact pressure
+    for the heights ``ht`` (m, maximum 0), else None."""
+    if mean_pressure is None or not isinstance(op, ExactInverse):
+        return None
+    return op.pressure_from_displacement(ht) + mean_pressure
 
 
-def coarse_start(op, heights, solve, min_size):
+def nearly_full_contact(full):
+    """Whether the full-contact pressure ``full`` is nearly the answer: tension on little of the cell."""
+    return full is not None and np.mean(full < 0) < NEAR_FULL_CONTACT
+
+
+def wants_coarse_start(op, heights, mean_pressure, options):
+    """Whether to start from the coarser grid (module docstring, item 1)."""
+    if not (options.coarsen and isinstance(op, Coarsening)):
+        return False
+    if strongly_nonsymmetric(op):
+        full = full_contact_pressure(op, heights - heights.max(), mean_pressure)
+        return heights.size >= COARSEN_MIN_SIZE_STRONG and not nearly_full_contact(full)
+    return heights.size >= COARSEN_MIN_SIZE
+
+
+def coarse_start(op, heights, solve):
     """First iterate from the same problem on the grid with half the points per axis.
 
-    ``solve(coarse_op, coarse_heights)`` solves it (itself starting from its own coarser grid,
-    down to ``min_size`` points) without raising. Returns ``(pressure or None, products,
-    approach or None)``: the coarse products counted at their share of grid points (a 512²
-    product as 1/4 of a 1024² one), and the coarse approach (m) measured from this grid's
-    first touch.
+    ``solve(coarse_op, coarse_heights)`` solves it (itself starting from its own coarser grid)
+    without raising. Returns ``(pressure or None, products, approach or None)``: the coarse
+    products counted at their share of grid points (a 512² product as 1/4 of a 1024² one), and
+    the coarse approach (m) measured from this grid's first touch.
     """
-    coarsened = getattr(op, "coarsened", None)
-    if coarsened is None or heights.size < min_size or any(n % 2 for n in heights.shape):
+    coarse_op = op.coarsened()
+    if coarse_op is None:
         return None, 0.0, None
-    coarse_op = coarsened()
-    coarse_heights = heights[tuple(slice(0, None, 2) for _ in heights.shape)]
+    coarse_heights = op.restrict(heights)
     coarse = solve(coarse_op, coarse_heights)
     share = coarse.matvecs * coarse_op.size / op.size
     if not coarse.success:
@@ -71,13 +102,21 @@ def coarse_start(op, heights, solve, min_size):
         return None, share, None
     # the same rigid position: the approach counts from first touch, on each grid's own maximum
     approach = coarse.approach + float(heights.max() - coarse_heights.max())
-    return prolong(coarse.pressure), share, approach
+    return op.prolong(coarse.pressure), share, approach
 
 
-def wants_symmetric_start(op, ht, strongly_nonsymmetric, options):
+def nearer(op, warm, coarse):
+    """Whether the warm start ``warm`` is nearer the answer than the interpolated coarse solution
+    ``coarse``: its set differs from the coarse solution's (on the coarse grid, counted in fine
+    points) at fewer points than the round trip through the coarse grid moves its own set."""
+    differ = 2**warm.ndim * np.count_nonzero((op.restrict(warm) > 0) != (op.restrict(coarse) > 0))
+    round_trip = np.count_nonzero((op.prolong(op.restrict(warm)) > 0) != (warm > 0))
+    return differ <= round_trip
+
+
+def wants_symmetric_start(op, ht, strong, options):
     """Whether the first iterate comes from the symmetric part's contact (module docstring)."""
-    one_d = options.symmetric_start_1d and ht.ndim == 1 and not op.is_symmetric
-    return strongly_nonsymmetric or one_d
+    return options.symmetric_start and (strong or (ht.ndim == 1 and not op.is_symmetric))
 
 
 def _full_contact_start(op, pb):
@@ -87,20 +126,20 @@ def _full_contact_start(op, pb):
     return np.where(pb.ht + pb.approach > 0, np.maximum(op.pressure_from_displacement(pb.ht), 0.0), 0.0)
 
 
-def _start_pressure(op, pb, initial, symmetric_start, solve_symmetric, options):
+def _start_pressure(op, pb, initial, symmetric_start, solve_symmetric):
     """``(pressure, products, given)``: the first iterate, and whether it came from
     somewhere other than the full-contact fallback."""
     matvecs = 0
-    if initial is None and pb.load_control and symmetric_start and hasattr(op, "pressure_from_displacement"):
-        # full contact is one Fourier division; where it is nearly the answer (tension on a
-        # small share of the cell) the symmetric-part start would lose it
-        full = op.pressure_from_displacement(pb.ht) + pb.p_ref
-        if np.mean(full < 0) < options.near_full_contact:
+    if initial is None and symmetric_start:
+        # full contact is one Fourier division; where it is nearly the answer the
+        # symmetric-part start would lose it
+        full = full_contact_pressure(op, pb.ht, pb.p_ref if pb.load_control else None)
+        if nearly_full_contact(full):
             initial = np.maximum(full, 0.0)
     if initial is None and symmetric_start:
         sym = solve_symmetric()
         initial, matvecs = sym.pressure, sym.matvecs
-    if initial is None and hasattr(op, "initial_pressure"):
+    if initial is None and isinstance(op, OwnStart):
         # operators without an exact full-contact inverse supply their own first iterate
         initial = op.initial_pressure(pb.ht, mean_pressure=pb.p_ref if pb.load_control else None, approach=pb.approach)
     if initial is None:
@@ -108,14 +147,14 @@ def _start_pressure(op, pb, initial, symmetric_start, solve_symmetric, options):
     return np.maximum(np.asarray(initial, dtype=float), 0.0), matvecs, True
 
 
-def first_iterate(op, pb, *, initial, initial_approach, symmetric_start, solve_symmetric, options):
+def first_iterate(op, pb, *, initial, initial_approach, symmetric_start, solve_symmetric):
     """``(pressure, contact set, products)`` to start the Newton iteration from.
 
     ``solve_symmetric()`` solves the symmetric part's problem (used when ``symmetric_start``
     and no better start is known); ``initial_approach`` (m), given with ``initial``, chooses
     the first set from the iterate's gap (one product) instead of ``p > 0``.
     """
-    p, matvecs, given = _start_pressure(op, pb, initial, symmetric_start, solve_symmetric, options)
+    p, matvecs, given = _start_pressure(op, pb, initial, symmetric_start, solve_symmetric)
     if not np.any(p > 0):
         p = np.where(pb.ht == 0, pb.p_ref, 0.0)
     contact = p > 0

@@ -128,9 +128,9 @@ class DirectedPeriodicHalfSpace(PeriodicHalfSpace):
         return self._qx
 
     def coarsened(self):
-        """The same operator on the grid with half the points per axis (even sides only)."""
+        """The same operator on the grid with half the points per axis (even sides only, else ``None``)."""
         if any(n % 2 for n in self.shape):
-            raise ValueError(f"coarsening needs even grid sides, got {self.shape}")
+            return None
         coarse = DirectedPeriodicHalfSpace(
             tuple(n // 2 for n in self.shape), self.length, self.material, self.speed, self.direction
         )
@@ -263,6 +263,12 @@ class DirectedIsolatedHalfSpace(IsolatedHalfSpace):
             kernel = kernel + creep
         f = material.plane_strain_factor
         return kernel * f, slope * f
+
+    def _periodic_cell(self, shape, length):
+        return DirectedPeriodicHalfSpace(shape, length, self.material, self.speed, self.direction)
+
+    def _with_shape(self, shape):
+        return DirectedIsolatedHalfSpace(shape, self.length, self.material, self.speed, self.direction)
 
     def symmetric_part(self):
         """Operator with kernel ``(K(r) + K(-r)) / 2``: the symmetric part of this operator."""

@@ -30,6 +30,7 @@ import scipy.fft as sfft
 
 from ..parallel import get_threads
 from . import influence
+from .periodic import PeriodicHalfSpace
 
 __all__ = ["IsolatedHalfSpace"]
 
@@ -174,7 +175,73 @@ class IsolatedHalfSpace:
         twin._khat = twin._transform(twin.kernel)
         twin._shat = np.zeros_like(self._shat)  # a symmetric kernel dissipates nothing
         twin.is_symmetric = True
+        twin._symmetric_part = True
+        twin.__dict__.pop("_cell", None)
         return twin
+
+    # ------------------------------------------------------------------ for the contact solver
+    def _padded_cell(self):
+        """The periodic cell of the zero-padded grid (side ``M d``) with the continuous operator's
+        symbol; this operator's symmetric part takes the cell's. Built once."""
+        cell = self.__dict__.get("_cell")
+        if cell is None:
+            shape = (self._pad,) * len(self.shape)
+            cell = self._periodic_cell(shape, self._pad * self.spacing)
+            if self.__dict__.get("_symmetric_part"):
+                cell = cell.symmetric_part()
+            self._cell = cell
+        return cell
+
+    def _periodic_cell(self, shape, length):
+        return PeriodicHalfSpace(shape, length, self.material, self.speed)
+
+    def approximate_inverse(self, displacement):
+        """Pressure (Pa) whose displacement is about ``displacement`` (m) on the domain: the exact
+        inverse of the continuous operator on the periodic cell of the zero-padded grid, cropped
+        to the domain (one FFT pair of the padded size, as a product). It is not this operator's
+        inverse (point values instead of element averages, periodic images beyond the padding):
+        the contact solver uses it as a preconditioner."""
+        cell = self._padded_cell()
+        padded = np.zeros(cell.shape)
+        inside = tuple(slice(0, k) for k in self.shape)
+        padded[inside] = displacement
+        return cell.pressure_from_displacement(padded)[inside]
+
+    def coarsened(self):
+        """The same operator with half the elements per axis over the same domain (even sides
+        only), or ``None``; the symmetric part's is the symmetric part of the coarse operator."""
+        if any(n % 2 for n in self.shape):
+            return None
+        coarse = self._with_shape(tuple(n // 2 for n in self.shape))
+        return coarse.symmetric_part() if self.__dict__.get("_symmetric_part") else coarse
+
+    def _with_shape(self, shape):
+        return IsolatedHalfSpace(shape, self.length, self.material, self.speed)
+
+    def restrict(self, field):
+        """``field`` on the grid of :meth:`coarsened`: the mean of the two (four) elements each
+        coarse element covers, whose centre is their midpoint."""
+        for axis in range(field.ndim):
+            field = 0.5 * (
+                np.take(field, range(0, field.shape[axis], 2), axis=axis)
+                + np.take(field, range(1, field.shape[axis], 2), axis=axis)
+            )
+        return field
+
+    def prolong(self, field):
+        """``field`` from the grid of :meth:`coarsened` to this one: linear between coarse element
+        centres (a fine centre lies a quarter of a coarse element from the nearest), zero beyond the
+        domain, where there is no pressure; keeps ``field >= 0``."""
+        for axis in range(field.ndim):
+            n = field.shape[axis]
+            padded = np.pad(field, [(1, 1) if a == axis else (0, 0) for a in range(field.ndim)])
+            fine = np.empty(tuple(2 * k if a == axis else k for a, k in enumerate(field.shape)))
+            for offset, side in ((0, 0), (1, 2)):  # fine 2i leans to coarse i - 1, fine 2i + 1 to i + 1
+                index = [slice(None)] * field.ndim
+                index[axis] = slice(offset, None, 2)
+                fine[tuple(index)] = 0.75 * field + 0.25 * np.take(padded, range(side, side + n), axis=axis)
+            field = fine
+        return field
 
     def max_phase(self):
         """Largest phase ``|arg J(w)|`` (rad) of the continuous symbol ``2(1-nu^2)/|q| J(-q_x v)``

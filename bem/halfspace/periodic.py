@@ -153,19 +153,52 @@ class PeriodicHalfSpace:
             green_inverse = self._green_inverse = _reciprocal(self._green)
         return self._multiply(field, green_inverse)
 
+    def approximate_inverse(self, displacement):
+        """:meth:`pressure_from_displacement`: on a periodic cell the inverse is exact."""
+        return self.pressure_from_displacement(displacement)
+
+    def max_phase(self):
+        """Largest phase ``|arg a_q|`` (rad) of the symbol: 0 when symmetric, above ``pi/4``
+        strongly non-symmetric for the contact solver."""
+        phase = self.__dict__.get("_max_phase")
+        if phase is None:
+            phase = self._max_phase = 0.0 if self.is_symmetric else float(np.max(np.abs(np.angle(self.symbol))))
+        return phase
+
     def coarsened(self):
-        """The same operator on the grid with half the points per axis (even sides only)."""
+        """The same operator on the grid with half the points per axis (even sides only, else
+        ``None``); the symmetric part's is the symmetric part of the coarse operator."""
         if any(n % 2 for n in self.shape):
-            raise ValueError(f"coarsening needs even grid sides, got {self.shape}")
+            return None
         coarse = PeriodicHalfSpace(tuple(n // 2 for n in self.shape), self.length, self.material, self.speed)
         return coarse.symmetric_part() if self.__dict__.get("_symmetric_part") else coarse
+
+    @staticmethod
+    def restrict(field):
+        """``field`` at the points of :meth:`coarsened` (coarse point ``i`` is fine point ``2i``)."""
+        return np.ascontiguousarray(field[tuple(slice(0, None, 2) for _ in field.shape)])
+
+    @staticmethod
+    def prolong(field):
+        """``field`` from the grid of :meth:`coarsened` to this one: periodic linear interpolation
+        (coarse point ``i`` sits on fine point ``2i``); keeps ``field >= 0`` and the mean."""
+        for axis in range(field.ndim):
+            mid = 0.5 * (field + np.roll(field, -1, axis=axis))
+            fine = np.empty(tuple(2 * k if a == axis else k for a, k in enumerate(field.shape)))
+            index = [slice(None)] * field.ndim
+            index[axis] = slice(0, None, 2)
+            fine[tuple(index)] = field
+            index[axis] = slice(1, None, 2)
+            fine[tuple(index)] = mid
+            field = fine
+        return field
 
     def _twin(self, *stale):
         """A copy sharing this operator's arrays, without the caches named in ``stale`` (and
         without its single-precision twin): for operators that change a symbol."""
         twin = object.__new__(PeriodicHalfSpace)
         twin.__dict__.update(self.__dict__)
-        for name in ("_single",) + stale:
+        for name in ("_single", "_max_phase") + stale:
             twin.__dict__.pop(name, None)
         return twin
 

@@ -29,8 +29,10 @@ import numpy as np
 from ..checks import check_array, check_positive, check_range
 from ..errors import InputError
 from . import master_curve
+from .coverage import band_warnings
 from .interconversion import creep_to_prony, prony_to_creep
 from .prony_fit import check_dma, default_times, fit_prony_series
+from .temperature import check_kelvin
 
 __all__ = ["Material"]
 
@@ -74,8 +76,12 @@ class Material:
     nu : float
         Poisson ratio in [0, 0.5].
     fit_report : FitReport or None
-        For fitted materials, how well the series reproduces the data it was fitted to
-        (see :mod:`bem.materials.prony_fit`); None otherwise.
+        For fitted materials, how well the series reproduces the data it was fitted to and
+        the band the data cover (see :mod:`bem.materials.prony_fit`); None otherwise.
+    warnings : tuple of str
+        What is doubtful about the material itself, in plain sentences: a master-curve sweep
+        far off the curve (:meth:`fit_master_curve`), a shift law applied outside its range
+        (:meth:`at_temperature`). Empty for a material as given.
     """
 
     E0: float
@@ -86,6 +92,7 @@ class Material:
     creep_times: np.ndarray = field(init=False, repr=False)
     E_inf: float = field(init=False)
     fit_report: object = field(default=None, repr=False, compare=False)
+    warnings: tuple = field(default=(), repr=False, compare=False)
 
     def __post_init__(self):
         E0 = check_positive("E0", self.E0)
@@ -209,15 +216,16 @@ class Material:
         storage,
         loss,
         *,
-        reference_temperature,
+        reference_temperature=None,
         shift="wlf",
         hz=False,
         terms_per_decade=3.0,
         smoothing=0.0,
         nu=0.5,
         temperature_tolerance=0.5,
-        min_overlap=0.3,
+        min_overlap=0.25,
         max_mismatch=0.05,
+        joint=True,
     ):
         """Master curve and shift law from DMA sweeps at several temperatures.
 
@@ -227,33 +235,46 @@ class Material:
             One entry per measured point: frequency (rad/s, or Hz with ``hz=True``),
             ``E'`` and ``E''`` (Pa, both > 0).
         temperatures : array_like
-            Temperature of each point, K. Points within ``temperature_tolerance`` (K) of
-            each other form one isothermal sweep; at least 3 sweeps are needed.
+            Temperature of each point, K (>= 100 K: a smaller value looks like degrees
+            Celsius and is an InputError). Points within ``temperature_tolerance`` (K) of
+            each other form one isothermal sweep.
         reference_temperature : float
-            ``T_ref`` (K) of the returned material; within the measured range.
-        shift : {"wlf", "arrhenius"}
-            The law fitted to the shift factors.
+            ``T_ref`` (K) of the returned material and law; measured or not. Required when
+            the law is fitted; with an imposed law it defaults to the law's own, and another
+            value refers the law to it (the same shifts).
+        shift : {"wlf", "arrhenius"} or WLF or Arrhenius
+            A name fits that law (at least 3 sweeps for WLF, 2 for Arrhenius); a law
+            (:class:`bem.materials.temperature.WLF` with known constants, say) is imposed and
+            only the series is fitted (1 sweep or more, overlapping or not).
         terms_per_decade, smoothing, nu
             As for :meth:`fit_prony`.
         min_overlap : float
-            Fraction (0-1) of a sweep's span in log frequency that neighbouring sweeps must
-            share once shifted.
+            Decades of frequency two neighbouring sweeps must share, once shifted, for their
+            overlay to count as a measured shift (the default 0.25 takes the 0.3-0.4 decades
+            that 5 K steps of 0.1-100 Hz sweeps leave near the glass transition).
         max_mismatch : float
-            Largest rms difference of log10 moduli (decades) between neighbouring sweeps
-            overlaid; beyond it the sweeps do not superpose and an InputError says so.
+            Largest rms difference of log10 moduli (decades) between overlapping sweeps
+            overlaid, and between every sweep and the master curve under the law; beyond
+            it the data do not superpose and an InputError says where.
+        joint : bool
+            Fit the law's parameters together with the series (default). False keeps the
+            law fitted to the overlap shifts alone, which then need every sweep to overlap a
+            neighbour.
 
         Returns
         -------
         (Material, WLF or Arrhenius)
             The material at ``T_ref`` (its ``fit_report`` a
-            :class:`bem.materials.master_curve.MasterCurveReport`: the fit's relative errors on the
-            shifted data and the shift factors) and the law, so that
+            :class:`bem.materials.master_curve.MasterCurveReport`: the fit's relative errors
+            on the data and its worst points, the reduced-frequency band the data cover and
+            whether they reach the plateaus, the shifts) and the law, so that
             ``material.at_temperature(T, law)`` describes the material at ``T``.
 
         Notes
         -----
-        The method (overlap shifting, the law, the fit) is described in
-        :mod:`bem.materials.master_curve`.
+        The method (overlap shifts anchored through the law, the joint fit of law and
+        series) is described in :mod:`bem.materials.master_curve`; what the band means for
+        a computation, in :meth:`extrapolation_warnings`.
         """
         E0, moduli, taus, law, report = master_curve.fit_master_curve(
             frequencies,
@@ -268,8 +289,9 @@ class Material:
             temperature_tolerance=temperature_tolerance,
             min_overlap=min_overlap,
             max_mismatch=max_mismatch,
+            joint=joint,
         )
-        return cls(E0, moduli, taus, nu, fit_report=report), law
+        return cls(E0, moduli, taus, nu, fit_report=report, warnings=report.notes), law
 
     def at_temperature(self, T, shift):
         """The material at temperature ``T`` (K) under the shift law ``shift``.
@@ -278,21 +300,65 @@ class Material:
         relaxation and creep time is multiplied by ``a_T``, so that
         ``E*(w)`` at ``T`` equals ``E*(a_T w)`` of this material (the reference), exactly:
         the moduli and compliances are unchanged and the times scale by one rounding each.
+
+        A fitted material's ``fit_report`` moves with it (its band divided by ``a_T``). Where
+        the law is used outside its range (``shift.range_warnings(T)``: for WLF below
+        ``T_ref - C2 + 10 K``, for any law a shift of more than 15 decades) the returned
+        material's ``warnings`` say so. A temperature below 100 K (degrees Celsius typed as
+        kelvin), or one whose shift puts the times outside floating point, is an InputError.
         """
         if not callable(shift):
             raise InputError(
                 f"shift must be a callable giving log10 a_T(T) (e.g. bem.materials.temperature.WLF), got {shift!r}"
             )
-        T = check_positive("T (K, absolute)", T)
-        factor = 10.0 ** float(shift(T))
-        if not (np.isfinite(factor) and factor > 0):
-            raise InputError(f"shift factor a_T at T = {T!r} K must be finite and > 0, got {factor!r}")
-        out = Material(self.E0, self.moduli, self.relaxation_times * factor, self.nu)
+        T = check_kelvin("T (K, absolute)", T)
+        try:
+            log_a = float(shift(T))
+        except OverflowError:
+            log_a = float("inf")
+        times = np.concatenate([self.relaxation_times, self.creep_times])
+        with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+            shifted = times * np.power(10.0, log_a)
+        if not (np.isfinite(log_a) and np.all((shifted >= 1e-280) & (shifted <= 1e280))):
+            raise InputError(
+                f"T = {T:g} K is outside the shift law's range: it gives log10 a_T = {log_a:.4g}, which moves "
+                "the material's times outside 1e-280 to 1e280 s, beyond what floating point holds (the law "
+                "cannot be used that far from its reference temperature)"
+            )
+        factor = 10.0**log_a
+        range_warnings = getattr(shift, "range_warnings", None)
+        notes = tuple(getattr(self.fit_report, "notes", ())) + (tuple(range_warnings(T)) if range_warnings else ())
+        report = self.fit_report.shifted(log_a) if self.fit_report is not None else None
+        out = Material(self.E0, self.moduli, self.relaxation_times * factor, self.nu, fit_report=report, warnings=notes)
         creep = self.creep_times * factor
         creep.setflags(write=False)
         object.__setattr__(out, "compliances", self.compliances)
         object.__setattr__(out, "creep_times", creep)
         return out
+
+    @property
+    def data_band(self):
+        """``(w_min, w_max)`` (rad/s) of the data a fitted material was fitted to, in this
+        material's frame (moved by :meth:`at_temperature`); None when not fitted."""
+        return None if self.fit_report is None else tuple(self.fit_report.frequency_band)
+
+    def extrapolation_warnings(self, w_low, w_high):
+        """Plain sentences (a tuple) on what is not measured in the band ``[w_low, w_high]``
+        (rad/s) a computation uses.
+
+        For a fitted material: one sentence per end of the band that lies outside the data's
+        band, saying how far, whether the data reach the plateau there (so whether ``E0`` or
+        ``E_inf`` is measured or a guess) and what to change
+        (:func:`bem.materials.coverage.band_warnings`). After these, the material's own
+        ``warnings`` (a shift law used outside its range). Empty for a material as given, or
+        when the data cover ``[w_low, w_high]``.
+        """
+        w_low = check_positive("w_low (rad/s)", w_low, allow_zero=True)
+        w_high = check_positive("w_high (rad/s)", w_high)
+        if w_low > w_high:
+            raise InputError(f"w_low must be <= w_high = {w_high!r} rad/s, got {w_low!r}")
+        band = () if self.fit_report is None else band_warnings(self.fit_report, w_low, w_high)
+        return tuple(band) + tuple(self.warnings)
 
     # ------------------------------------------------------------------ responses
     @property
@@ -341,7 +407,12 @@ class Material:
         glassy = w_min * self.relaxation_times > 1.0 / tol
         active = ~(relaxed | glassy)
         return Material(
-            self.E0 + self.moduli[glassy].sum(), self.moduli[active], self.relaxation_times[active], self.nu
+            self.E0 + self.moduli[glassy].sum(),
+            self.moduli[active],
+            self.relaxation_times[active],
+            self.nu,
+            fit_report=self.fit_report,
+            warnings=self.warnings,
         )
 
     def __eq__(self, other):

@@ -12,15 +12,16 @@ Workflow:
 
 1. make a surface: generated (:func:`self_affine`, :func:`profile` in :mod:`.rough`), analytic
    (:func:`sinusoid`, :func:`sphere`, :func:`cylinder` in :mod:`.shapes`), from an array
-   (:func:`from_heights`) or measured (:mod:`.measured`: :func:`load` for plain height files,
-   ``read_topography`` then ``to_surface`` for instrument files);
+   (:func:`from_heights`) or measured (:func:`from_scan` for a scan of any shape and format,
+   periodic or not; :func:`load` for a plain file holding one square periodic cell; the steps
+   of ``from_scan`` are in :mod:`.measured`);
 2. check what it holds (:mod:`.statistics`: rms height and slope, the PSD and its target);
 3. hand it to :func:`bem.solve`.
 """
 
-from .measured import load
+from .measured import from_scan, load
 from .rough import profile, self_affine
 from .shapes import cylinder, sinusoid, sphere
 from .surface import Surface, from_heights
 
-__all__ = ["Surface", "from_heights", "self_affine", "profile", "sinusoid", "load", "sphere", "cylinder"]
+__all__ = ["Surface", "from_heights", "self_affine", "profile", "sinusoid", "load", "from_scan", "sphere", "cylinder"]

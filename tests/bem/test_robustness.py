@@ -7,11 +7,14 @@ sweep is marked slow). Each converged result must also be physically sane: p >= 
 """
 
 import itertools
+import re
 
 import numpy as np
 import pytest
 
 import bem
+from bem.contact.options import MAXITER
+from bem.contact.solver import LINES_MAXITER_SHARE
 
 L = 0.01
 XI = [1e-8, 1e-4, 1e-2, 1.0, 1e2, 1e8]
@@ -76,10 +79,14 @@ def test_converges_everywhere_64(material, xi, level):
 def test_crawling_line_attempt_leaves_room_for_the_fallback():
     """The hardest case of the sweep at 128²: E_inf/E0 = 1e4, xi = 1, a few contact spots.
 
-    Its line-preconditioned attempt creeps (steps of 1/16-1/64, the residual 6e2 -> 0.8 over
-    400 steps) without stalling, so it used to take all of maxiter and the solve failed. It
-    now gets half of maxiter (``LINES_MAXITER_SHARE``); the unpreconditioned attempt then
-    converges in about 72 steps. About 280 s here: the price of this case, not of the sweep.
+    Its line-preconditioned attempt can creep (steps of 1/16-1/64) without stalling. The
+    principle checked: that attempt never takes more than its share of ``maxiter``
+    (``bem.contact.solver.LINES_MAXITER_SHARE``), so the unpreconditioned attempt always has
+    the rest, and the solve converges. How many steps the first attempt takes depends on the
+    machine's round-off (88 and 200 have been measured), so no count is asserted.
     """
     res = _check(_surface(2, 128), MATERIALS["sls_1e4"], 1.0, 1e-2)
-    assert "after a first attempt of 200" in res.message
+    first = re.search(r"after a first attempt of (\d+)", res.message)
+    if first is not None:  # the line attempt gave up: it kept within its share
+        assert int(first.group(1)) <= LINES_MAXITER_SHARE * MAXITER
+        assert res.iterations <= MAXITER

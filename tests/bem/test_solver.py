@@ -219,19 +219,20 @@ def hard():
 
 def test_solution_satisfies_the_stated_conditions(hard):
     """Residual as documented in bem.contact: ``max |min(p / p_mean, g / h_ref)| <= rtol`` with
-    ``h_ref = gap_scale a0 p_mean`` held between ``gap_floor_share ptp(h)`` and ``ptp(h)``
-    (``gap_scale_strong`` above 45 degrees of symbol phase)."""
-    from bem.contact import ContactOptions
-    from bem.contact.inner import max_phase
+    ``h_ref = GAP_SCALE a0 p_mean`` held between ``GAP_FLOOR_SHARE ptp(h)`` and ``ptp(h)``
+    (``GAP_SCALE_STRONG`` above 45 degrees of symbol phase; :mod:`bem.contact.newton`)."""
+    from bem.contact import newton
+    from bem.contact.operator import strongly_nonsymmetric
     from bem.sliding import operator_for
 
     s, m, v, load = hard
     rtol = 1e-9
     res = bem.solve(s, m, speed=v, load=load, rtol=rtol)
     p, g = res.pressure, res.gap
-    op, o = operator_for(s, m, v), ContactOptions()
-    h_ref = (o.gap_scale_strong if max_phase(op) > o.strong_phase else o.gap_scale) * op.self_influence() * p.mean()
-    h_ref = min(max(h_ref, o.gap_floor_share * np.ptp(s.heights)), np.ptp(s.heights))
+    op = operator_for(s, m, v)
+    scale = newton.GAP_SCALE_STRONG if strongly_nonsymmetric(op) else newton.GAP_SCALE
+    h_ref = scale * op.self_influence() * p.mean()
+    h_ref = min(max(h_ref, newton.GAP_FLOOR_SHARE * np.ptp(s.heights)), np.ptp(s.heights))
     assert res.success and "converged" in res.message and res.iterations <= 100
     assert 0.1 < res.contact_fraction < 0.9
     assert p.mean() * L**2 == pytest.approx(load, rel=1e-12) and res.load == pytest.approx(load, rel=1e-12)
@@ -312,6 +313,24 @@ def test_friction_curve_marks_failed_points_and_goes_on(hard):
     curve = bem.friction_curve(s, m, speeds=[v, 2 * v], load=load, maxiter=1)
     assert not curve.all_converged and not curve.success.any() and curve.results == [None, None]
     assert np.all(np.isnan(curve.friction)) and all("not converged" in msg for msg in curve.messages)
+
+
+def test_friction_curve_passes_the_contact_options_to_every_point(monkeypatch):
+    """``contact_options`` reaches the contact solver at every speed (and the default is
+    ``ContactOptions()``): the curve benchmark and users tune whole curves with it."""
+    from bem import sliding
+    from bem.contact import ContactOptions
+
+    seen, original = [], sliding.solve_contact
+    monkeypatch.setattr(sliding, "solve_contact", lambda *a, **kw: seen.append(kw["options"]) or original(*a, **kw))
+    s, m = _rough(128, 1, seed=2), make_seed()
+    speeds, load = np.array([1e-3, 1e-2, 0.1]) * L / 0.01, _load(s, m.E0)
+    options = ContactOptions(inner_eta=0.05, coarsen=False)
+    assert bem.friction_curve(s, m, speeds=speeds, load=load, contact_options=options).all_converged
+    assert len(seen) == 3 and all(o is options for o in seen)
+    seen.clear()
+    bem.friction_curve(s, m, speeds=speeds, load=load)
+    assert len(seen) == 3 and all(o == ContactOptions() for o in seen)
 
 
 @pytest.mark.slow

@@ -15,6 +15,7 @@ from bem.analysis import anisotropy
 from bem.errors import InputError
 from bem.halfspace.isolated import IsolatedHalfSpace
 from bem.halfspace.periodic import PeriodicHalfSpace
+from bem.materials.prony_fit import fit_prony_series
 
 ELASTIC = bem.Material.elastic(1e7)
 
@@ -75,3 +76,52 @@ def test_the_sweeps_process_pool_runs_bem_on_one_thread_per_worker():
 
     with ProcessPoolExecutor(1, mp_context=mp.get_context("spawn"), initializer=points._pool_init) as pool:
         assert pool.submit(bem.get_threads).result(timeout=120) == 1
+
+
+@pytest.fixture
+def blas_limits(monkeypatch):
+    """The ``limits`` of every threadpoolctl BLAS limit that bem sets."""
+    import threadpoolctl
+
+    seen = []
+    original = threadpoolctl.threadpool_limits
+
+    def spy(*args, **kwargs):
+        seen.append(kwargs.get("limits", args[0] if args else None))
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(threadpoolctl, "threadpool_limits", spy)
+    return seen
+
+
+def _solve_and_fit():
+    """A contact solve and a Prony fit: the two parts of bem that hold BLAS to the setting."""
+    s = bem.surfaces.self_affine(16, 1e-3, hurst=0.8, scales=4, rms_slope=0.1, seed=0)
+    bem.solve(s, bem.Material.standard_linear_solid(E0=1e6, E_inf=3e6, creep_time=0.01), speed=0.01, load=1e-3)
+    m = bem.Material.standard_linear_solid(E0=1e6, E_inf=3e6, creep_time=0.01)
+    w = np.logspace(0, 4, 20)
+    e = m.complex_modulus(w)
+    fit_prony_series(w, e.real, e.imag, np.logspace(-4, 0, 5))
+
+
+def test_blas_threads_are_one_setting_the_user_can_change(blas_limits):
+    """BLAS inside bem runs on get_blas_threads() threads (1 by default), set like the FFT
+    threads: set_blas_threads, or use_threads(n, blas=...), restored afterwards; None leaves BLAS
+    to its own setting (no limit is set)."""
+    assert bem.get_blas_threads() == 1
+    _solve_and_fit()
+    assert blas_limits and set(blas_limits) == {1}
+    blas_limits.clear()
+    with bem.use_threads(1, blas=2):
+        _solve_and_fit()
+    assert blas_limits and set(blas_limits) == {2}
+    assert bem.get_blas_threads() == 1
+    blas_limits.clear()
+    previous = bem.set_blas_threads(None)
+    try:
+        _solve_and_fit()
+        assert blas_limits == []
+    finally:
+        bem.set_blas_threads(previous)
+    with pytest.raises(InputError, match="blas threads must be an integer >= 1"):
+        bem.set_blas_threads(0)

@@ -20,3 +20,17 @@ def test_materials_benchmark_runs_from_the_cli(tmp_path):
     mc = result["master"][0]
     assert mc["C1_rel"] < 0.02 and mc["C2_rel"] < 0.02 and mc["log_aT_max"] < 0.1
     assert all(mc["log_aT_max"] < r["log_aT_max"] for r in result["master"][1:])
+    # the temperature sets, noise-free: the joint fit is exact where the sweeps overlap or
+    # leave narrow gaps (measured C1 within 5e-7, moduli within 3e-5), and says so where it is not
+    cases = {}
+    for row in result["cases"]:
+        cases.setdefault(row["case"], []).append(row)
+    for name in ("10 K, T_ref not measured", "5 K, -40..60 C", "0/23/50 C", "20 K, two gaps"):
+        joint = cases[name][0]
+        assert joint["method"] == "viscobem joint" and abs(joint["C1_rel"]) < 1e-5 and joint["warnings"] == 0
+        assert max(joint["storage_max"], joint["loss_max"], joint["ref_storage_max"], joint["ref_loss_max"]) < 1e-4
+        assert cases[name][3]["method"] == "pyvisco"
+    wide = cases["no overlap"]
+    assert wide[0]["warnings"] == 1 and wide[0]["law_sigma_max"] > 1.0 and "failed" in wide[1]
+    assert wide[2]["method"] == "viscobem imposed law" and wide[2]["storage_max"] < 1e-6
+    assert "| viscobem joint |" in (tmp_path / "materials.md").read_text()

@@ -187,14 +187,14 @@ def test_overrides_are_checked_like_the_scene():
 
 
 def test_missing_optional_dependency_names_the_extra(tmp_path):
-    """dask and pyvista blocked (as if not installed): one line naming the extra, exit 2."""
+    """dask and pyvista blocked (as if not installed): a command asked for one stops with one line
+    naming the extra, exit 2 (viscobem validate runs without pyvista: tests/cli/test_extras.py)."""
     path = tmp_path / "s.toml"
     path.write_text(SMALL)
     block = "import sys; sys.modules['dask'] = sys.modules['distributed'] = sys.modules['pyvista'] = None; "
     for args, extra in [
         (["run", str(path), "--out", str(tmp_path / "o")], "vtk"),
         (["run", str(path), "--out", str(tmp_path / "o"), "--scheduler", "tcp://127.0.0.1:1"], "dask"),
-        (["validate", "--quick", "--case", "nothing", "--out", str(tmp_path / "v")], "vtk"),
     ]:
         code = f"{block}from viscobem_cli.main import main; sys.exit(main({args!r}))"
         proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
@@ -219,8 +219,9 @@ def test_console_states_tau_and_the_speed_range(tmp_path, capsys):
 
 
 def test_under_resolved_grid_warns_with_what_to_change(tmp_path, capsys):
-    """n / scales = 2 points per shortest wavelength: the resolution warning at once, and the
-    two friction forms disagree (> 5 %) after the run; both in results.json["warnings"]."""
+    """n / scales = 2 points per shortest wavelength: the resolution warning at once; after the run
+    every point's own warnings (bem.accuracy), gathered one sentence per kind with the speeds they
+    come from; each printed, and each point's error estimate in results.json."""
     path = tmp_path / "coarse.toml"
     path.write_text(
         SMALL.replace("n = 64", "n = 32")
@@ -229,25 +230,19 @@ def test_under_resolved_grid_warns_with_what_to_change(tmp_path, capsys):
     )
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
     out = capsys.readouterr().out
-    warnings = json.loads((tmp_path / "o" / "results.json").read_text())["warnings"]
-    assert len(warnings) == 2, warnings
+    rec = json.loads((tmp_path / "o" / "results.json").read_text())
+    warnings = rec["warnings"]
     assert "2 points per shortest wavelength" in warnings[0] and "Raise [surface] n to at least 64" in warnings[0]
-    assert "friction forms" in warnings[1] and "Raise [surface] n" in warnings[1]
-    assert out.count("WARNING:") == 2
-    # 4 points per wavelength at 128² (32 scales... here 16 scales at 64²: 4) gives no resolution warning
+    kinds = {p["kind"] for point in rec["points"] for p in point["warnings"]}
+    assert {"contact_fraction", "friction_forms"} <= kinds, kinds
+    gathered = [w for w in warnings[1:] if "friction_eq6" in w]
+    assert len(gathered) == 1 and gathered[0].startswith("at 2 of 3 speeds (xi = 0.01, xi = 0.1; worst at xi = 0.01): ")
+    assert out.count("WARNING:") == len(warnings)
+    curve = rec["friction_curve"]
+    assert all(e > 0.05 for e in curve["contact_fraction_error"])  # the estimate behind the warning
+    assert all(p["error_estimate"]["method"] == "indicators" for p in rec["points"])
+    # 4 points per wavelength (16 scales at 64²) gives no warning before the run
     assert scenes.parse(SMALL).warnings == ()
-
-
-def test_friction_form_warning_threshold():
-    from viscobem_cli.guidance import friction_form_warnings
-
-    def curve(mu, mu6):
-        return {"load": 1.0, "xi": [1.0, 2.0, 3.0], "friction": mu, "friction_eq6": mu6}
-
-    assert friction_form_warnings([curve([0.1, 0.2, 0.1], [0.104, 0.191, 0.1])]) == []  # 4 %, 4.5 %
-    assert len(friction_form_warnings([curve([0.1, 0.2, 0.1], [0.1, 0.2, 0.107])])) == 1  # 7 %
-    # friction below 1 % of the peak is not compared (both forms ~ 0 there)
-    assert friction_form_warnings([curve([1e-5, 0.2, None], [2e-5, 0.2, None])]) == []
 
 
 def test_output_files_are_readable_by_group_and_others(tmp_path):

@@ -81,3 +81,21 @@ def test_profile_directions_are_0_or_180(tmp_path):
     path.write_text(text)
     with pytest.raises(bem.errors.InputError, match="direction_deg = 45.*0 or pi"):
         scenes.load(path)
+
+
+def test_direction_sweep_surfaces_every_directions_warnings(tmp_path, capsys):
+    """Issue 25 item 6: the 30 and 90 degree points carried friction-form warnings while the
+    sweep's top-level warnings were empty and the console printed none. Now every direction's
+    warnings reach the top level, each prefixed with its direction, and the console prints them."""
+    path = _write(tmp_path, "[0, 30, 90]")
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    rec = json.loads((tmp_path / "o" / "results.json").read_text())
+    subs = {
+        deg: json.loads((tmp_path / "o" / f"direction_{deg:07.3f}" / "results.json").read_text())["warnings"]
+        for deg in (0, 30, 90)
+    }
+    assert subs[30]  # 32 cells, 4 scales, 30 % slopes: the oblique points do warn
+    expected = [f"at direction {deg} deg: {w}" for deg in (0, 30, 90) for w in subs[deg]]
+    assert rec["warnings"] == expected
+    assert out.count("WARNING:") == len(expected)

@@ -1,8 +1,9 @@
-"""Scene kind ``measured``: an instrument file (written here by SurfaceTopography) solved on
-the measured patch (isolated) or as a windowed periodic cell; the choice and the PSD report
-in results.json."""
+"""Scene kind ``measured``: an instrument file (written here by SurfaceTopography) solved as a
+mirrored periodic cell (the default), a windowed one or an isolated patch; the choice, the patch,
+the warnings and the PSD report in results.json; the same numbers as the Python entry."""
 
 import json
+import sys
 
 import numpy as np
 import pytest
@@ -53,23 +54,36 @@ def _scene(folder, boundary, load, plots="false"):
     return path
 
 
-def test_isolated_patch(folder):
-    path = _scene(folder, 'boundary = "isolated"', "0.02", plots="true")
+def test_default_patch_is_the_python_entry(folder):
+    """Defaults (plane detrending, mirrored periodic cell, load on the patch) as bem.surfaces.from_scan:
+    the same friction to round-off."""
+    path = _scene(folder, "", "0.02", plots="true")
     assert main(["run", str(path), "--out", str(folder / "out"), "--no-progress"]) == 0
     rec = json.loads((folder / "out" / "results.json").read_text())
     meas = rec["measured"]
-    assert meas["boundary"] == "isolated" and rec["solver"]["periodic"] is False
-    assert meas["source"]["format"] == "nc" and meas["source"]["detrend"] == "curvature"
-    assert meas["patch_side"] == pytest.approx(380e-6, rel=0.02)
-    assert meas["psd"]["q_grid_max"] == pytest.approx(np.pi * 32 / meas["cell_side"])
+    assert meas["boundary"] == "periodic" and meas["window"] == "mirror" and rec["solver"]["periodic"] is True
+    assert meas["source"]["format"] == "nc" and meas["detrend"] == "curvature"
+    assert meas["patch_side"] == pytest.approx(380e-6, rel=0.02) and meas["cell_side"] == 2 * meas["patch_side"]
+    assert meas["patch_loads"] == [0.02] and rec["loads"] == [0.08] and meas["load_factor"] == 4
+    assert meas["patch"]["fraction_of_scan"] == pytest.approx(76 / 80)
+    assert any("only the square" in w for w in rec["warnings"])  # 80 x 76 points: the centred 76 x 76
+    assert meas["psd"]["q_grid_max"] == pytest.approx(np.pi * 32 / meas["patch_side"])
     assert 0 < meas["psd"]["variance_above_grid_nyquist"] < 1
     assert (folder / "out" / "measured_psd.png").is_file()
-    # the same numbers through the API
-    m = measured.detrend(measured.read_topography(folder / "scan.nc"), "curvature")
-    s = measured.to_surface(m, 32, boundary="isolated")
     scene = scenes.load(path)
-    ref = bem.solve(s, scene.material, speed=0.01, load=0.02, periodic=False)
+    with pytest.warns(UserWarning, match="only the square"):
+        s = bem.surfaces.from_scan(folder / "scan.nc", 32, detrend="curvature")
+    ref = bem.solve(s, scene.material, speed=0.01, load=measured.cell_load(s, 0.02))
     assert rec["friction_curve"]["friction"][0] == pytest.approx(ref.friction, rel=1e-12)
+
+
+def test_isolated_patch_is_warned_about(folder):
+    path = _scene(folder, 'boundary = "isolated"', "0.02")
+    assert main(["run", str(path), "--out", str(folder / "out"), "--no-progress"]) == 0
+    rec = json.loads((folder / "out" / "results.json").read_text())
+    assert rec["measured"]["boundary"] == "isolated" and rec["solver"]["periodic"] is False
+    assert rec["measured"]["load_factor"] == 1 and rec["loads"] == [0.02]
+    assert any("finite rigid punch" in w for w in rec["warnings"])
 
 
 def test_periodic_with_a_window(folder):
@@ -78,6 +92,7 @@ def test_periodic_with_a_window(folder):
     rec = json.loads((folder / "o" / "results.json").read_text())
     assert rec["measured"]["boundary"] == "periodic" and rec["measured"]["window"] == "hann"
     assert rec["solver"]["periodic"] is True and rec["all_converged"]
+    assert any("flattens the patch" in w for w in rec["warnings"])
 
 
 @pytest.mark.parametrize(
@@ -91,3 +106,59 @@ def test_periodic_with_a_window(folder):
 def test_bad_measured_scenes(folder, extra, words):
     with pytest.raises(bem.errors.InputError, match=words):
         scenes.load(_scene(folder, extra, "0.01"))
+
+
+def test_cover_solves_every_square_of_the_scan(folder):
+    path = _scene(folder, 'patch = "cover"', "0.02")
+    scene = scenes.load(path)
+    assert len(scene.realisations) == 2 and not any("only the square" in w for w in scene.warnings)
+    assert main(["run", str(path), "--out", str(folder / "c"), "--no-progress"]) == 0
+    rec = json.loads((folder / "c" / "results.json").read_text())
+    origins = [p["origin"][0] for p in rec["measured"]["patches"]]
+    assert origins[0] == 0 and origins[1] == pytest.approx(4 * 400e-6 / 80)  # 80 x 76 points: squares at 0 and 4
+    assert rec["friction_curve"]["realisations"] == 2 and rec["friction_curve"]["friction_se"][0] is not None
+
+
+def test_edges_that_carry_load_get_advice_for_a_scan(folder):
+    """window = "none" on a scan that is not periodic: the friction forms differ, and the advice
+    speaks of the scan's boundary, not of the scales a scan does not have."""
+    path = _scene(folder, 'window = "none"', "0.02")
+    assert main(["run", str(path), "--out", str(folder / "w"), "--no-progress"]) == 0
+    rec = json.loads((folder / "w" / "results.json").read_text())
+    forms = [w for w in rec["warnings"] if "friction_eq6" in w and "differs from friction" in w]
+    assert forms and not any("scales" in w for w in rec["warnings"])
+    step = [w for w in rec["warnings"] if "keeps the step between the scan's opposite edges" in w]
+    assert step and "Use window 'mirror'" in step[0]
+
+
+def test_file_kind_refuses_a_non_square_map_and_names_the_kind(tmp_path, capsys):
+    np.save(tmp_path / "scan.npy", np.zeros((30, 20)))
+    path = tmp_path / "f.toml"
+    path.write_text(
+        SCENE.replace('kind = "measured"\npath = "scan.nc"\nn = 32\ndetrend = "curvature"\nBOUNDARY', "")
+        .replace("[surface]", '[surface]\nkind = "file"\npath = "scan.npy"\nlength = 1e-3')
+        .replace("LOAD", "0.01")
+        .replace("PLOTS", "false")
+    )
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and 'kind = "measured"' in err and "30 x 20" in err
+
+
+def test_missing_surface_topography_is_one_line(folder, monkeypatch, capsys):
+    """Without the topography extra: one line naming it and exit status 2 (no traceback)."""
+    monkeypatch.setitem(sys.modules, "SurfaceTopography", None)
+    assert main(["run", str(_scene(folder, "", "0.01")), "--out", str(folder / "m"), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "viscobem[topography]" in err and "Traceback" not in err
+
+
+def test_speeds_beyond_what_the_scan_holds_are_warned_about(folder):
+    """The loss peak of the solid (317 rad/s) excites the 0.38 mm patch's longest wavelength at
+    0.019 m/s: of 0.001 and 0.1 m/s, the second is warned about."""
+    path = _scene(folder, "", "0.02")
+    path.write_text(path.read_text().replace("speeds = [0.01]", "speeds = [0.001, 0.1]"))
+    assert main(["run", str(path), "--out", str(folder / "v"), "--no-progress"]) == 0
+    rec = json.loads((folder / "v" / "results.json").read_text())
+    assert rec["measured"]["speed_limit"] == pytest.approx(317 * 380e-6 / (2 * np.pi), rel=0.02)
+    assert sum("1 of 2 speeds are above" in w for w in rec["warnings"]) == 1

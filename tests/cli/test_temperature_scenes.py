@@ -133,6 +133,10 @@ def test_a_dma_table_with_temperatures_gives_a_master_curve_and_its_law(tmp_path
     [
         (("temperatures = [290.0, 300.0, 312.5]", "temperatures = [290.0, -3.0]"), ["temperatures", "> 0 K"]),
         (("temperatures = [290.0, 300.0, 312.5]", "temperatures = [150.0]"), ["reference_temperature - C2", "200"]),
+        (
+            ("temperatures = [290.0, 300.0, 312.5]", "temperatures = [200.2]"),
+            ["[loading] temperatures", "log10 a_T = 4491"],
+        ),
         (('shift = { law = "wlf", C1 = 9.0, C2 = 100.0, reference_temperature = 300.0 }\n', ""), ["shift law"]),
         (('law = "wlf", C1 = 9.0', 'law = "vft", C1 = 9.0'), ["shift", "wlf", "arrhenius"]),
         (("C2 = 100.0,", "C2 = 100.0, Tg = 200.0,"), ["'Tg'", "valid keys"]),
@@ -163,3 +167,131 @@ def test_built_in_temperature_scene_parses():
     s = scenes.load("temperature")
     assert len(s.temperatures) == 5 and isinstance(s.shift, WLF) and s.shift.reference_temperature == 296.15
     assert s.material.E_inf / s.material.E0 == pytest.approx(200, rel=1e-3) and s.speeds.size == 9
+
+
+# ---------------------------------------------------------------- real DMA files, temperatures that make sense
+
+
+def _sweep_rows(temps_c, m=None, law=None):
+    """Rows (Hz, E' MPa, E'' MPa, T C) of sweeps from the 3-term series under WLF(8.86, 101.6, 296.15)."""
+    law = law or WLF(8.86, 101.6, 296.15)
+    m = m or bem.Material.from_prony(E0=2e6, moduli=[3e7, 4e7, 2e7, 1e7], times=[1e-6, 1e-4, 1e-2, 1.0])
+    hz = np.logspace(-1, 2, 10)
+    rows = []
+    for t in temps_c:
+        e = m.at_temperature(t + 273.15, law).complex_modulus(2 * np.pi * hz)
+        rows.append(np.column_stack([hz, e.real / 1e6, e.imag / 1e6, np.full(hz.size, t)]))
+    return np.vstack(rows), m, law
+
+
+TEMPS_C = np.arange(-30.0, 41.0, 5.0)
+
+
+def test_a_csv_with_named_columns_and_units_in_the_header(tmp_path):
+    """A header row used to be rejected ("could not convert string 'frequency_Hz'"). Columns are
+    found by name in any order, extra columns are ignored, units come from the header: the same
+    material as the headerless table with the unit keys."""
+    rows, m, law = _sweep_rows(TEMPS_C)
+    tan = rows[:, 2] / rows[:, 1]
+    table = np.column_stack([rows[:, 3], rows[:, 0], tan, rows[:, 2], rows[:, 1]])
+    lines = ["temperature_C,frequency_Hz,tan_delta,E''_MPa,E'_MPa"] + [",".join(f"{x:.17g}" for x in r) for r in table]
+    (tmp_path / "named.csv").write_text("\n".join(lines) + "\n")
+    text = DMA_SCENE.replace("PLOTS", "false").replace('dma = "sweeps.csv"', 'dma = "named.csv"')
+    for key in ("dma_frequency_unit", "dma_modulus_unit", "dma_temperature_unit"):
+        text = "\n".join(line for line in text.splitlines() if not line.startswith(key))
+    s = scenes.parse(text, base=tmp_path)
+    assert s.dma["units"] == {"frequency": "Hz", "modulus": "MPa", "temperature": "C"}
+    np.testing.assert_allclose(s.dma["T"], rows[:, 3] + 273.15)
+    _write_sweeps(tmp_path / "sweeps.csv")
+    plain = scenes.parse(DMA_SCENE.replace("PLOTS", "false"), base=tmp_path)
+    assert s.shift.C1 == pytest.approx(plain.shift.C1, rel=1e-6)
+
+
+def test_two_header_rows_and_named_columns(tmp_path):
+    """pyvisco's layout: names, then units. And dma_columns for names nobody guesses."""
+    rows, _, _ = _sweep_rows(TEMPS_C)
+    body = "\n".join(",".join(f"{x:.17g}" for x in r) for r in rows)
+    (tmp_path / "pyvisco.csv").write_text("f_set,E_stor,E_loss,T\nHz,MPa,MPa,C\n" + body + "\n")
+    text = DMA_SCENE.replace("PLOTS", "false").replace('dma = "sweeps.csv"', 'dma = "pyvisco.csv"')
+    s = scenes.parse(text, base=tmp_path)
+    assert s.shift.C1 == pytest.approx(8.86, rel=1e-3) and s.dma["e1"].max() > 1e7
+    (tmp_path / "odd.csv").write_text("a,b,c,d\n" + body + "\n")
+    odd = text.replace('"pyvisco.csv"', '"odd.csv"')
+    with pytest.raises(InputError, match="no column named for frequency, storage, loss.*dma_columns"):
+        scenes.parse(odd, base=tmp_path)
+    named = odd.replace(
+        'dma = "odd.csv"',
+        'dma = "odd.csv"\ndma_columns = { frequency = "a", storage = 2, loss = "c", temperature = 4 }',
+    )
+    assert scenes.parse(named, base=tmp_path).shift.C1 == pytest.approx(s.shift.C1, rel=1e-9)
+    clash = text.replace('dma_modulus_unit = "MPa"', 'dma_modulus_unit = "kPa"')
+    with pytest.raises(InputError, match="dma_modulus_unit = 'kPa' disagrees with the unit 'MPa'"):
+        scenes.parse(clash, base=tmp_path)
+
+
+def test_known_wlf_constants_are_imposed_from_a_scene(tmp_path):
+    """All of C1, C2, reference_temperature with a temperature column: the law is used as given."""
+    _write_sweeps(tmp_path / "sweeps.csv")
+    text = DMA_SCENE.replace("PLOTS", "false").replace(
+        'law = "wlf", reference_temperature = 296.15',
+        'law = "wlf", C1 = 8.86, C2 = 101.6, reference_temperature = 296.15',
+    )
+    s = scenes.parse(text, base=tmp_path)
+    assert s.shift == WLF(8.86, 101.6, 296.15) and s.material.fit_report.law_imposed
+    partial = text.replace("C1 = 8.86, ", "")
+    with pytest.raises(InputError, match="the full law"):
+        scenes.parse(partial, base=tmp_path)
+
+
+@pytest.mark.parametrize(
+    "replace, words",
+    [
+        (
+            ("temperatures = [296.15, 320.0]", "temperatures = [23.0, 50.0]"),
+            ["[loading] temperatures", "degrees Celsius"],
+        ),
+        (("reference_temperature = 296.15", "reference_temperature = 23.0"), ["reference_temperature", "Celsius"]),
+        (('dma_temperature_unit = "C"\n', ""), ['dma_temperature_unit = \\"C\\"', "degrees Celsius"]),
+    ],
+)
+def test_temperatures_in_celsius_are_named(tmp_path, replace, words):
+    _write_sweeps(tmp_path / "sweeps.csv")
+    with pytest.raises(InputError) as err:
+        scenes.parse(DMA_SCENE.replace("PLOTS", "false").replace(*replace), base=tmp_path)
+    for word in words:
+        assert word.replace("\\", "") in str(err.value)
+
+
+DMA_RUN = DMA_SCENE.replace("PLOTS", "false").replace("speeds = [0.01, 0.1, 1.0]", "speeds = [1e-6, 0.01]")
+
+
+def test_results_record_the_law_the_band_and_the_extrapolation(tmp_path, capsys):
+    """results.json holds C1, C2 and the reference temperature, the fit report with the data's
+    band, and the band the speeds excite; a speed below the data's band is a warning there and on
+    the console. Each temperature's xi and xi_time come from the material at that temperature (at
+    320 K xi used to be computed with the 296.15 K creep time while the 320 K one was listed)."""
+    from viscobem_cli.main import main
+
+    _write_sweeps(tmp_path / "sweeps.csv")
+    (tmp_path / "scene.toml").write_text(DMA_RUN)
+    assert main(["run", str(tmp_path / "scene.toml"), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    printed = capsys.readouterr().out
+    rec = json.loads((tmp_path / "out" / "results.json").read_text())
+    sub = json.loads((tmp_path / "out" / "T_320.00K" / "results.json").read_text())
+    law = sub["material"]["shift"]
+    assert law["law"] == "WLF" and law["reference_temperature"] == 296.15
+    assert law["C1"] == pytest.approx(8.86, rel=1e-3) and law["C2"] == pytest.approx(101.6, rel=1e-3)
+    fit = sub["material"]["fit"]
+    assert fit["law"]["C1"] == law["C1"] and fit["terms"] > 0 and len(fit["worst_loss"]) == 3
+    lo, hi = sub["material"]["data_band"]
+    w_low, w_high = sub["material"]["excited_band"]
+    assert w_low == pytest.approx(2 * np.pi / 0.01 * 1e-6) and w_low < lo  # 1e-6 m/s: below the data
+    assert w_high == pytest.approx(np.pi * 64 / 0.01 * 0.01)
+    creep = max(sub["material"]["creep_times"])
+    assert sub["xi_time"] == pytest.approx(creep, rel=1e-12) and "at 320 K" in sub["xi_time_source"]
+    assert sub["friction_curve"]["xi"] == pytest.approx([v * creep / 0.01 for v in (1e-6, 0.01)], rel=1e-12)
+    below = [w for w in rec["warnings"] if "the material is extrapolated" in w]
+    assert {w.split(":")[0] for w in below} == {"at 296.15 K", "at 320 K"}
+    assert all("down to 0.000628 rad/s" in w for w in below)
+    assert "WARNING: at 320 K: the material is extrapolated" in printed
+    assert sub["warnings"] == rec["warnings"][: len(sub["warnings"])]  # the study's warnings, once

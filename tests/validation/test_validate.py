@@ -106,8 +106,10 @@ def test_cheap_cases_pass_and_report_every_number(cheap_run):
     html = (out / "report.html").read_text()
     for name in CHEAP:
         assert f"`{name}`" in md and f"id='{name}'" in html
-    assert html.count("data:image/png;base64,") >= 3 * len(CHEAP)  # overlays, sweeps, timings
+    plots = html.count("class='vb-zoom vb-plot'") + html.count("data:image/png;base64,")
+    assert plots >= 3 * len(CHEAP) and f"data-plots='{plots}'" in html  # overlays, sweeps, timings
     assert html.count("<img") == html.count("data:image/png;base64,")
+    assert len(list((out / "plots").glob("*.png"))) == plots  # each plot also as its own PNG
     assert "src='http" not in html  # self-contained
 
 

@@ -22,7 +22,7 @@ from validation.references.hunter import rolling_cylinder as hunter
 from .base import Case, CaseOutput, Profile, Sweep
 from .cylinder_settings import FULL_HIGH_RATIO, FULL_PRONY, FULL_SLS, QUICK_HIGH_RATIO, QUICK_PRONY, QUICK_SLS
 from .fem_checks import fem_self_checks
-from .solvers import bem_isolated_cylinder, bem_periodic_cylinder, fem_cylinder, hertz_line_half_width
+from .solvers import RTOL, bem_isolated_cylinder, bem_periodic_cylinder, fem_cylinder, hertz_line_half_width
 from .vtk_out import write_bem_sweep, write_pvd_for
 
 R, P = 0.01, 1000.0
@@ -102,11 +102,13 @@ def solve_all(
     if vtk_dir is not None:
         for name, sols in runs.items():
             if written[name]:
-                out.files += write_pvd_for(vtk_dir / name, root, [(f, values[k]) for f, k in written[name]])
+                out.files += write_pvd_for(
+                    vtk_dir / name, root, [(f, values[k]) for f, k in written[name]], parameter=label_name
+                )
             elif any("surface" in sol for sol in sols):
                 done = [(sol, v) for sol, v in zip(sols, values) if sol["success"]]
                 if done:
-                    out.files += write_bem_sweep(vtk_dir / name, root, *zip(*done))
+                    out.files += write_bem_sweep(vtk_dir / name, root, *zip(*done), parameter=label_name, rtol=RTOL)
     return runs
 
 

@@ -85,7 +85,7 @@ def run_full_contact(*, quick, vtk_dir, root, tamper):
             )
         )
         if vtk_dir is not None:
-            out.files += write_bem_sweep(vtk_dir / f"bem_{dim}d", root, sols, cfg["xi"])
+            out.files += write_bem_sweep(vtk_dir / f"bem_{dim}d", root, sols, cfg["xi"], parameter="xi", rtol=1e-10)
     return out
 
 
@@ -156,7 +156,7 @@ def run_westergaard(*, quick, vtk_dir, root, tamper):
         )
         sols.append(dict(surface=surface, result=res, material=m))
     if vtk_dir is not None:
-        out.files += write_bem_sweep(vtk_dir / "bem", root, sols, cfg["fractions"])
+        out.files += write_bem_sweep(vtk_dir / "bem", root, sols, cfg["fractions"], parameter="fraction", rtol=1e-10)
     return out
 
 
@@ -200,7 +200,7 @@ def run_dense(*, quick, vtk_dir, root, tamper):
         )
         sols.append(dict(surface=s, result=res, material=m))
     if vtk_dir is not None:
-        out.files += write_bem_sweep(vtk_dir / "bem", root, sols, list(range(len(sols))))
+        out.files += write_bem_sweep(vtk_dir / "bem", root, sols, list(range(len(sols))), parameter="index", rtol=1e-12)
     return out
 
 

@@ -197,7 +197,7 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
         if low:
             curves[name] = tuple(np.array(v) for v in zip(*low))
         if vtk_dir is not None and sols:
-            out.files += write_bem_sweep(vtk_dir / name, root, sols, labels)
+            out.files += write_bem_sweep(vtk_dir / name, root, sols, labels, parameter="s")
     out.profiles.append(rest)
     out.sweeps.append(Sweep("low-speed friction", "s = V lambda / a0", "friction coefficient", curves, logy=True))
     out.numbers["fem"] = dict(

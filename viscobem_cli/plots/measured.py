@@ -8,7 +8,7 @@ def psd_plot(rec, path):
     psd = rec["psd"]
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.0, 4.2), constrained_layout=True)
-    ax.loglog(psd["q"], psd["C"], "o-", ms=3, label="measurement (radial average, Hann window)")
+    ax.loglog(psd["q"], psd["C"], "o-", ms=3, label="scan (radial average, Hann window)")
     ax.axvline(psd["q_grid_min"], color="C1", ls="--", label="grid: 2 pi / cell side")
     ax.axvline(psd["q_grid_max"], color="C3", ls="--", label="grid cut-off: pi n / cell side")
     ax.axvline(psd["q_measurement_max"], color="0.5", ls=":", label="scan Nyquist")
@@ -18,8 +18,9 @@ def psd_plot(rec, path):
     ax.set_title(
         f"{rec['boundary']}"
         + (f", window {rec.get('window')}" if rec["boundary"] == "periodic" else "")
-        + f"; rms slope {psd['rms_slope_measurement']:.3g} scan, {psd['rms_slope_grid']:.3g} grid; "
-        f"{100 * lost:.2g} % of variance above cut-off",
+        + f", detrend {rec['detrend']}, patch {100 * rec['patch']['fraction_of_scan']:.3g} % of the scan"
+        + f"\nrms slope {psd['rms_slope_measurement']:.3g} patch, {psd['rms_slope_grid']:.3g} grid; "
+        f"{100 * lost:.2g} % of the patch's variance above the cut-off",
         fontsize=8,
     )
     ax.legend(fontsize=7)

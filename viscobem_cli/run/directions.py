@@ -1,5 +1,5 @@
 """A sweep over sliding directions: the study once per direction of the scene, each in its own
-folder, and the gathered record (the scene key is described in :mod:`viscobem_cli.scene.directions`)."""
+folder (run by :func:`viscobem_cli.run.study.run_scene`), and the gathered record (the scene key is described in :mod:`viscobem_cli.scene.directions`)."""
 
 import dataclasses
 import json
@@ -10,7 +10,7 @@ from pathlib import Path
 from ..files import write_atomic
 from ..plots.directions import polar_plot
 
-__all__ = ["folder_name", "gather", "run_sweep"]
+__all__ = ["finish", "folder_name", "gather", "studies", "write_progress"]
 
 
 def folder_name(theta):
@@ -18,23 +18,32 @@ def folder_name(theta):
     return f"direction_{math.degrees(theta):07.3f}".replace("-", "m")
 
 
-def run_sweep(run_scene, scene, out_dir, **options):
-    """``run_scene`` once per direction of ``scene`` (each in its folder); the gathered record.
+def studies(scene):
+    """``(study, folder)`` per direction of ``scene``: the scene along that direction alone and
+    the sub-folder its study writes to."""
+    return [(dataclasses.replace(scene, directions=(theta,)), folder_name(theta)) for theta in scene.directions]
 
-    The top-level ``results.json`` is the first direction's record plus ``directions``; it is
-    rewritten after each direction, so an interrupted sweep keeps the directions it finished.
-    """
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    t0 = time.perf_counter()
-    records = []
-    record = None
-    for theta in scene.directions:
-        one = dataclasses.replace(scene, directions=(theta,))
-        records.append(run_scene(one, out / folder_name(theta), **options))
-        record = dict(records[0])
-        record["directions"] = gather(scene, records)
-        write_atomic(out / "results.json", json.dumps(record, indent=1))
+
+def write_progress(scene, records, out):
+    """The top-level ``results.json`` so far: the first direction's record plus ``directions``,
+    with ``warnings`` gathering every direction's own (each prefixed by its direction); it is
+    rewritten after each direction, so an interrupted sweep keeps the directions it finished."""
+    record = dict(records[0])
+    record["directions"] = gather(scene, records)
+    record["warnings"] = list(scene.warnings) + [
+        f"at direction {math.degrees(t):g} deg: {w}"
+        for t, r in zip(scene.directions, records)
+        for w in r["warnings"][len(scene.warnings) :]
+    ]
+    write_atomic(Path(out) / "results.json", json.dumps(record, indent=1))
+    return record
+
+
+def finish(scene, records, out, started):
+    """The gathered record of the per-direction ``records`` (also written), with the polar plot;
+    ``started`` is the sweep's start (``time.perf_counter()``)."""
+    out = Path(out)
+    record = write_progress(scene, records, out)
     record["all_converged"] = all(r["all_converged"] for r in records)
     record["resumed_points"] = sum(r["resumed_points"] for r in records)
     files = ["results.json"] + [f"{folder_name(t)}/{f}" for t, r in zip(scene.directions, records) for f in r["files"]]
@@ -42,7 +51,7 @@ def run_sweep(run_scene, scene, out_dir, **options):
         polar_plot(record["directions"], out / "friction_polar.png")
         files.append("friction_polar.png")
     record["files"] = files
-    record["stages"] = dict(record["stages"], total=time.perf_counter() - t0)
+    record["stages"] = dict(record["stages"], total=time.perf_counter() - started)
     write_atomic(out / "results.json", json.dumps(record, indent=1))
     return record
 

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 import bem
+from bem.accuracy import Finding
 from bem.analysis import anisotropy
 from bem.sweep import sweep
 
@@ -99,10 +100,14 @@ def point_record(task, r, i, res, message):
         "fields": None,
     }
     if res is None:
+        rec["warnings"] = [Finding(f"the solve failed: {message}", "not_converged").as_dict()]
         return rec
     rec["times"]["solve"] = res.wall_time
     for key, attr in NUMBERS:
         rec[key] = getattr(res, attr)
+    rec["peak_pressure"] = res.peak_pressure
+    rec["error_estimate"] = res.error_estimate.as_dict()
+    rec["warnings"] = [Finding.from_dict(w).as_dict() for w in res.warnings]
     if task.get("indenter"):
         rec.update(indenter_contact(task["indenter"], res.pressure, task["surfaces"][r].spacing))
     if task["anisotropy"] and res.pressure.ndim == 2:
@@ -134,7 +139,8 @@ def run_chunk(task, callback=None):
     ``warm_start``, ``periodic``, ``method``, ``anisotropy``, ``keep_fields`` (fields of
     realisation 0 at load 0 are stored), ``keep_chi`` (contact maps of every point),
     ``precision`` ("float32" | "float64"), ``indenter`` ("sphere" | "cylinder" | None: contact
-    radius and area per point), ``out`` (folder of the point files) and
+    radius and area per point), ``error_estimate`` (as in :func:`bem.solve`; each point's record
+    carries its ``error_estimate`` and ``warnings``), ``out`` (folder of the point files) and
     ``single_thread`` (limit FFT threads to 1, for pool workers sharing the cores).
     """
     if task.get("single_thread"):
@@ -173,6 +179,7 @@ def run_chunk(task, callback=None):
         on_point=on_point,
         keep=False,
         direction=task.get("direction", 0.0),
+        error_estimate=task.get("error_estimate", "indicators"),
     )
     return records
 
@@ -240,13 +247,9 @@ def load_fields(folder, rec, surface):
 
 
 def _pool_init():
+    """One thread per worker process for the FFTs and BLAS alike: the workers share the cores."""
     bem.set_threads(1)
-    try:
-        from threadpoolctl import threadpool_limits
-
-        threadpool_limits(1)
-    except ImportError:  # pragma: no cover - only a speed-up
-        pass
+    bem.set_blas_threads(1)
 
 
 def execute(tasks, *, workers=1, scheduler=None, on_point, poll):

@@ -10,8 +10,10 @@ The sweep itself is :mod:`viscobem_cli.run.points`: every finished point is writ
 its own file, and a rerun in the same folder resumes from them. ``results.json`` is written
 when the run starts (``complete: false``), when it is interrupted, and when it ends; a run
 killed outright is rebuilt from the point files by the next run. ``results.json["warnings"]``
-lists what is doubtful about the study and what to change (an under-resolved grid, friction
-forms that disagree).
+lists what is doubtful about the study and what to change: the scene's own (before the run),
+every point's warnings (:mod:`bem.accuracy`: estimated errors above 5 %, friction forms that
+disagree, ...) gathered one sentence per kind with the points they come from, and a friction peak
+outside the sweep.
 
 ``fields.npz`` (realisation 0 at the first load, one row per converged speed): ``heights``
 (m), ``speed`` (m/s), ``xi``, ``approach`` (m), ``pressure`` (Pa) and ``displacement`` (m)
@@ -37,7 +39,7 @@ from bem.sweep import check_sweep
 
 from .. import guidance
 from ..files import remove_stale_temporaries, write_atomic
-from . import analysis, records, temperatures
+from . import analysis, directions, records, temperatures
 from .points import STUDY_FIELDS, execute, load_fields, load_point, point_key, point_name
 
 __all__ = ["run_scene", "fold_material"]
@@ -89,7 +91,7 @@ def _base_record(scene, material, workers, scheduler):
         "conventions": "heights positive toward the half-space; the surface slides in +x (axis 0); "
         "friction = dissipation form, friction_eq6 = -(1/F_N) int p dh/dx dA; ensemble "
         "values are means over realisations with standard errors in *_se",
-        "material": records.material_record(scene.material),
+        "material": records.scene_material_record(scene),
         "material_solved": {
             **records.material_record(material),
             "terms": int(material.moduli.size),
@@ -108,6 +110,7 @@ def _base_record(scene, material, workers, scheduler):
             "maxiter": scene.maxiter,
             "periodic": scene.periodic,
             "method": scene.method,
+            "error_estimate": scene.error_estimate,
             "workers": workers,
             "scheduler": scheduler,
         },
@@ -245,8 +248,24 @@ def _vtk(scene, fields, out):
     from validation import vtk_io
 
     idx = sorted(fields)
+    settings = {
+        "rtol": scene.rtol,
+        "maxiter": scene.maxiter,
+        "periodic": scene.periodic,
+        "method": scene.method,
+        "direction_deg": math.degrees(scene.direction),
+        "grid": list(scene.surface.shape),
+        "xi_time_s": scene.xi_time,
+        "xi_length_m": scene.xi_length,
+    }
+    extra = vtk_io.provenance(
+        solver=f"bem.solve ({'periodic' if scene.periodic else 'isolated'} BEM, method={scene.method!r}), "
+        f"realisation 0 at load {scene.loads[0]:g}",
+        settings=settings,
+        material_given=scene.raw.get("material"),
+    )
     return vtk_io.write_sweep(
-        out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx], material=scene.material
+        out / "vtk", scene.surface, [fields[i] for i in idx], scene.xi[idx], material=scene.material, extra=extra
     )
 
 
@@ -257,13 +276,12 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     A folder holding finished points of the same study is resumed: those points are not
     solved again.
     """
+    options = dict(progress=progress, scheduler=scheduler, workers=workers)
     if len(scene.directions) > 1:  # a sweep over sliding directions: one study per direction
-        from .directions import run_sweep
-
-        return run_sweep(run_scene, scene, out_dir, progress=progress, scheduler=scheduler, workers=workers)
+        return _per_direction(scene, out_dir, options)
     check_sweep(scene.surface, scene.material, speeds=scene.speeds, loads=scene.loads, rtol=scene.rtol)
     if scene.temperatures:  # one sweep per temperature (viscobem_cli.scene.temperatures)
-        return temperatures.run(scene, out_dir, run_scene, progress=progress, scheduler=scheduler, workers=workers)
+        return _per_temperature(scene, out_dir, options)
     out = Path(out_dir)
     points_dir = out / "points"
     points_dir.mkdir(parents=True, exist_ok=True)
@@ -287,6 +305,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
         "maxiter": scene.maxiter,
         "periodic": scene.periodic,
         "method": scene.method,
+        "error_estimate": scene.error_estimate,
         "anisotropy": outputs["anisotropy"],
         **keep,
     }
@@ -309,8 +328,7 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
             stages["point_" + name] = float(sum(spent))
     extras = _analyses(scene, record, recs, points_dir, stages)
     _write_record(out, scene, record, recs)  # the curves, for the plots
-    advice = "Raise [surface] n until they agree." if scene.kind in ("sphere", "cylinder") else None
-    record["warnings"] += guidance.friction_form_warnings(record["curves"], **({"advice": advice} if advice else {}))
+    record["warnings"] += records.point_warnings(scene, recs)
     record["warnings"] += guidance.peak_warnings(record["curves"], scene.xi_time_source)
     record["files"] = _outputs(scene, record, recs, points_dir, out, extras, stages)
     if scene.surface.metadata.get("kind") == "measured":  # boundary choice and PSD of the measurement
@@ -323,6 +341,24 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     stages["total"] = time.perf_counter() - t_start
     _write_record(out, scene, record, recs)
     return record
+
+
+def _per_direction(scene, out_dir, options):
+    """One study per sliding direction (:mod:`viscobem_cli.run.directions`), each in its folder."""
+    out, started, records = Path(out_dir), time.perf_counter(), []
+    out.mkdir(parents=True, exist_ok=True)
+    for one, folder in directions.studies(scene):
+        records.append(run_scene(one, out / folder, **options))
+        directions.write_progress(scene, records, out)
+    return directions.finish(scene, records, out, started)
+
+
+def _per_temperature(scene, out_dir, options):
+    """One speed sweep per temperature (:mod:`viscobem_cli.run.temperatures`), each in its folder."""
+    out, started = Path(out_dir), time.perf_counter()
+    out.mkdir(parents=True, exist_ok=True)
+    records = [run_scene(sub, out / folder, **options) for sub, folder in temperatures.studies(scene)]
+    return temperatures.combine(scene, records, out, started)
 
 
 def _tasks(scene, material, todo, points_dir, workers, scheduler, keep):
@@ -354,6 +390,7 @@ def _tasks(scene, material, todo, points_dir, workers, scheduler, keep):
                     "maxiter": scene.maxiter,
                     "periodic": scene.periodic,
                     "method": scene.method,
+                    "error_estimate": scene.error_estimate,
                     "warm_start": scene.warm_start,
                     "anisotropy": scene.outputs["anisotropy"],
                     "keep_fields": keep["fields"],
@@ -379,6 +416,10 @@ def _fields_of_first(scene, recs, points_dir):
         if data is not None and "pressure" in data:
             fields[i] = SimpleNamespace(
                 friction=rec["friction"],
+                friction_eq6=rec["friction_eq6"],
+                residual=rec["residual"],
+                iterations=rec["iterations"],
+                success=rec["success"],
                 contact_fraction=rec["contact_fraction"],
                 speed=rec["speed"],
                 load=rec["load"],

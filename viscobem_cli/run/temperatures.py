@@ -1,7 +1,9 @@
 """Friction against speed and temperature: the study once per temperature of the scene, and the
-combined record (the scene keys are described in :mod:`viscobem_cli.scene.temperatures`)."""
+combined record (the scene keys are described in :mod:`viscobem_cli.scene.temperatures`).
 
-import dataclasses
+Each temperature's study (:func:`viscobem_cli.scene.temperatures.scene_at`) lists its own
+material, ``xi_time`` and ``xi``, all from the material at that temperature."""
+
 import json
 import time
 from pathlib import Path
@@ -12,22 +14,26 @@ from bem.materials.master_curve import MasterCurveReport
 
 from ..files import write_atomic
 from ..plots.temperatures import plot_master_curve, plot_temperature_sweep
+from ..scene.temperatures import scene_at
+
+__all__ = ["combine", "folder_name", "studies", "summary", "write_master_curve"]
 
 
 def folder_name(T):
     return f"T_{T:.2f}K"
 
 
-def run(scene, out_dir, run_scene, *, progress=True, scheduler=None, workers=None):
-    """The speed sweep at every temperature of ``scene``, each by ``run_scene`` (the study of one
-    temperature, :func:`viscobem_cli.run.study.run_scene`); the combined record (also written)."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    started = time.perf_counter()
-    records = []
-    for T in scene.temperatures:
-        sub = dataclasses.replace(scene, material=scene.material.at_temperature(T, scene.shift), temperatures=())
-        records.append(run_scene(sub, out / folder_name(T), progress=progress, scheduler=scheduler, workers=workers))
+def studies(scene):
+    """``(study, folder)`` per temperature of ``scene``: the scene at that temperature (the material
+    at T, and xi with its time: :func:`viscobem_cli.scene.temperatures.scene_at`) and the sub-folder
+    its study writes to."""
+    return [(scene_at(scene, T), folder_name(T)) for T in scene.temperatures]
+
+
+def combine(scene, records, out, started):
+    """The combined record of the per-temperature ``records`` (also written to ``out``), and the
+    master-curve files; ``started`` is the sweep's start (``time.perf_counter()``)."""
+    out = Path(out)
     law = scene.shift
     table = {
         "temperature": list(scene.temperatures),

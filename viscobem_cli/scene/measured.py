@@ -1,66 +1,111 @@
-"""Scene kind ``measured``: a measured topography file on the solver grid.
+"""Scene kind ``measured``: a scan of part of a larger surface (any instrument format, any shape,
+periodic or not) on the solver grid, through :func:`bem.surfaces.from_scan` with its defaults.
 
 ``[surface]`` keys (SI lengths; the file's own units are read from it)::
 
     kind = "measured"
     path = "scan.x3p"          # any format SurfaceTopography reads (relative to the scene file)
-    n = 128                    # solver grid points per side
-    detrend = "plane"          # "none" | "mean" | "plane" | "curvature"
-    boundary = "isolated"      # "isolated" (the measured patch) | "periodic"
-    window = "tukey"           # periodic only: "tukey" | "hann" | "mirror" | "none"
+    n = 128                    # grid points per side of the solved patch (default: its own pixels)
+    detrend = "plane"          # "plane" | "none" | "mean" | "curvature"
+    boundary = "periodic"      # "periodic" | "isolated" (a scan of a whole finite body)
+    window = "mirror"          # periodic only: "mirror" | "periodic_component" | "tukey" | "hann" | "none"
+                               # (default "none" for a scan the file declares periodic)
     alpha = 0.25               # tukey only: tapered fraction of each side
+    patch = "centre"           # "centre" | "cover" (every square of the scan) | [x0, y0] | [x0, y0, side] (m)
     unit = "um"                # only if the file has no unit: unit of heights and sizes
     scan_size = [50, 40]       # only if the file has no size: extent along x, y in `unit`
     channel = 0                # height channel of a multi-channel file
 
-``[solver] periodic`` follows ``boundary`` (a contradicting value is an error).
-``results.json["measured"]`` records the boundary, window, patch and cell sides, the file's
-format and units, and the PSD report (the measurement's radially averaged PSD beside the
-grid's wavevector range, rms heights and slopes, variance lost above the grid's Nyquist);
-with plots on, ``measured_psd.png`` shows it.
+``[loading] load`` is the force on the solved patch (N; N/m for a line scan). A mirrored cell
+holds the patch four times (twice for a line), so the solver gets that many times the load
+(same nominal pressure); ``results.json["loads"]`` are the cell's, ``results.json["measured"]``
+gives ``load_factor`` and ``patch_loads``. ``[solver] periodic`` follows ``boundary`` (a
+contradicting value is an error). With ``patch = "cover"`` each square of the scan is one
+realisation: every number is reported as their mean with a standard error, and
+``results.json["measured"]["patches"]`` lists them. ``results.json["measured"]`` records the
+boundary, window, detrending, the patch (origin, side, fraction of the scan), the file's format
+and units, and the PSD report (the scan's radially averaged PSD beside the grid's wavevector
+range, rms heights and slopes, variance lost above the grid's Nyquist); with plots on,
+``measured_psd.png`` shows it. Warnings (a cropped scan, a boundary measured to misrepresent a
+patch) go to the console and ``results.json["warnings"]``.
 """
+
+import warnings
 
 from bem.errors import InputError
 from bem.surfaces import measured
 
-__all__ = ["KEYS", "periodic", "surface"]
+__all__ = ["KEYS", "periodic", "surfaces", "patch_loads", "warnings_of"]
 
-KEYS = {"path", "n", "detrend", "boundary", "window", "alpha", "unit", "scan_size", "channel"}
+KEYS = {"path", "n", "detrend", "boundary", "window", "alpha", "patch", "unit", "scan_size", "channel"}
 
 
-def surface(t, base):
-    """The solver surface of a ``kind = "measured"`` table (with its PSD report in metadata)."""
+def _check(t):
     extra = sorted(set(t) - KEYS - {"kind"})
     if extra:
         raise InputError(
             f"[surface] key(s) {', '.join(map(repr, extra))} do not apply to kind = 'measured'; "
             f"its keys: {', '.join(sorted(KEYS))}"
         )
-    for key in ("path", "n"):
-        if key not in t:
-            raise InputError(f"[surface] {key} is required for kind = 'measured'")
+    if "path" not in t:
+        raise InputError("[surface] path is required for kind = 'measured'")
     if not isinstance(t["path"], str):
         raise InputError(f"[surface] path must be a file path (string), got {t['path']!r}")
     size = t.get("scan_size")
     if size is not None and not (isinstance(size, list) and all(isinstance(v, (int, float)) for v in size)):
         raise InputError(f"[surface] scan_size must be a list of sizes (in unit) per axis, got {size!r}")
-    m = measured.read_topography(base / t["path"], unit=t.get("unit"), physical_sizes=size, channel=t.get("channel", 0))
-    m = measured.detrend(m, t.get("detrend", "plane"))
-    s = measured.to_surface(
-        m, t["n"], boundary=t.get("boundary", "isolated"), window=t.get("window", "tukey"), alpha=t.get("alpha", 0.25)
+    patch = t.get("patch", "centre")
+    if not (patch in ("centre", "cover") or isinstance(patch, list)):
+        raise InputError(f"[surface] patch must be 'centre', 'cover', [x0, y0] or [x0, y0, side] (m), got {patch!r}")
+
+
+def surfaces(t, base):
+    """The solver surfaces of a ``kind = "measured"`` table: one, or one per square of the scan
+    with ``patch = "cover"``; each with its PSD report in ``metadata["measured"]["psd"]``."""
+    _check(t)
+    m = measured.read_topography(
+        base / t["path"], unit=t.get("unit"), physical_sizes=t.get("scan_size"), channel=t.get("channel", 0)
     )
-    meta = dict(s.metadata)
-    meta["measured"] = {**dict(s.metadata["measured"]), "psd": measured.psd_report(m, s)}
-    return type(s)(s.heights, s.length, name=s.name, centered=s.centered, metadata=meta)
+    patch = t.get("patch", "centre")
+    patches = measured.cover(m) if patch == "cover" else [tuple(patch) if isinstance(patch, list) else patch]
+    detrend = t.get("detrend", "plane")
+    whole = measured.detrend(m, detrend)
+    out = []
+    for p in patches:
+        with warnings.catch_warnings():  # the scene reports them (metadata -> Scene.warnings)
+            warnings.simplefilter("ignore", UserWarning)
+            s = measured.from_scan(
+                m,
+                t.get("n"),
+                detrend=detrend,
+                boundary=t.get("boundary", "periodic"),
+                window=t.get("window"),
+                alpha=t.get("alpha", 0.25),
+                patch=p,
+            )
+        meta = dict(s.metadata)
+        meta["measured"] = {**dict(s.metadata["measured"]), "psd": measured.psd_report(whole, s)}
+        out.append(type(s)(s.heights, s.length, name=s.name, centered=s.centered, metadata=meta))
+    return tuple(out)
+
+
+def warnings_of(surfaces):
+    """The surfaces' warnings, each once (the squares of a cover share theirs)."""
+    return list(dict.fromkeys(w for s in surfaces for w in s.metadata["measured"]["warnings"]))
+
+
+def patch_loads(surface, loads):
+    """The solver's loads (on the cell) for ``loads`` on the measured patch."""
+    return tuple(measured.cell_load(surface, f) for f in loads)
 
 
 def periodic(t, solver):
     """``[solver] periodic`` of a measured scene: the boundary's choice."""
-    want = t.get("boundary", "isolated") == "periodic"
+    boundary = t.get("boundary", "periodic")
+    want = boundary == "periodic"
     given = solver.get("periodic", want)
     if given != want:
         raise InputError(
-            f"[solver] periodic = {str(given).lower()} contradicts [surface] boundary = "
-            f"{t.get('boundary', 'isolated')!r}; leave periodic out"
+            f"[solver] periodic = {str(given).lower()} contradicts [surface] boundary = {boundary!r}; leave periodic out"
         )
     return want

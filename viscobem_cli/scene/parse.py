@@ -9,19 +9,22 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
                  |  E0, moduli, times (Prony)  |  E0, compliances, times (creep)
                  |  dma = "file.csv" (columns: frequency, storage E', loss E'' [, temperature];
                     dma_frequency_unit = "rad/s" | "Hz"; dma_modulus_unit = "Pa" | "kPa" | "MPa" | "GPa";
-                    dma_temperature_unit = "K" | "C"; dma_terms_per_decade = 3.0)
+                    dma_temperature_unit = "K" | "C"; dma_terms_per_decade = 3.0; columns named in a
+                    header row or by dma_columns: viscobem_cli.scene.dma)
                  shift = { law = "wlf", C1, C2, reference_temperature (K) } | { law = "arrhenius",
                     activation_energy (J/mol), reference_temperature (K) }  (see viscobem_cli.scene.temperatures)
-    [surface]    kind = "self_affine" | "sinusoid" | "file" | "sphere" | "cylinder", length (m),
+    [surface]    kind = "self_affine" | "sinusoid" | "measured" | "file" | "sphere" | "cylinder", length (m),
                  n, and per kind:
                  self_affine: hurst, scales, rms_height | rms_slope, seed, rolloff,
                               anisotropy, dim (1 or 2), realisations (K: seeds seed..seed+K-1)
                  sinusoid:    amplitude (m), wavelength (m), dim, direction
-                 file:        path (.npy/.txt/.csv, relative to the scene file), unit
+                 file:        one square periodic cell of plain heights: path (.npy/.txt/.csv, one
+                              row per x, relative to the scene file), unit
                  sphere, cylinder: radius (m), exact (default false: paraboloid); an isolated
                               indenter centred in a domain of side length (2-D map / 1-D profile)
-                 measured:    path (any instrument format), n, detrend, boundary, window, alpha,
-                              unit, scan_size, channel (viscobem_cli.scene.measured)
+                 measured:    a scan of part of a larger surface, any shape and format, periodic or
+                              not: path, n, detrend, boundary, window, alpha, patch, unit,
+                              scan_size, channel (viscobem_cli.scene.measured)
     [loading]    load (N; N/m for 1-D profiles; a number or a list to sweep) and speeds = [...] (m/s) or
                  xi = {start, stop, num} (log-spaced) or a list (xi = v tau / L; tau = xi_time or the
                  material's longest creep time); temperatures = [...] (K; needs a shift law);
@@ -43,6 +46,7 @@ from pathlib import Path
 import numpy as np
 
 from bem import Material, surfaces
+from bem.contact.options import MAXITER, RTOL
 from bem.errors import InputError
 
 from .. import guidance
@@ -86,6 +90,7 @@ SCHEMA = {
         "dma_terms_per_decade",
         "dma_modulus_unit",
         "dma_temperature_unit",
+        "dma_columns",
         "shift",
     },
     "surface": {
@@ -114,9 +119,21 @@ SCHEMA = {
         "alpha",
         "scan_size",
         "channel",
+        "patch",
     },  # kind = "measured"
     "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
-    "solver": {"rtol", "maxiter", "warm_start", "workers", "chunk", "scheduler", "fold_tol", "periodic", "method"},
+    "solver": {
+        "rtol",
+        "maxiter",
+        "warm_start",
+        "workers",
+        "chunk",
+        "scheduler",
+        "fold_tol",
+        "periodic",
+        "method",
+        "error_estimate",
+    },
     "outputs": {"friction_curve", "fields", "plots", "vtk", "anisotropy", "contact_psd", "persson", "fields_precision"},
     "analysis": {"contact_level", "psd_smoothing", "plot_xi"},
 }
@@ -137,11 +154,12 @@ class Scene:
     speeds: np.ndarray
     xi: np.ndarray
     xi_time: float
-    rtol: float = 1e-8
-    maxiter: int = 100
+    rtol: float = RTOL
+    maxiter: int = MAXITER
     warm_start: bool = True
     periodic: bool = True
     method: str = "auto"
+    error_estimate: str = "indicators"  # or "refined", or None (bem.solve's error_estimate)
     outputs: dict = field(default_factory=dict)
     source: str = ""
     raw: dict = field(default_factory=dict, repr=False)
@@ -234,10 +252,10 @@ def _surface(t, base):
     kind = t.get("kind")
     if kind not in SURFACE_KINDS:
         raise InputError(f"[surface] kind must be one of {', '.join(SURFACE_KINDS)}, got {kind!r}")
-    if kind == "measured":  # a measured topography file: viscobem_cli.scene.measured
+    if kind == "measured":  # a scan of part of a larger surface: viscobem_cli.scene.measured
         from . import measured
 
-        return (measured.surface(t, base),)
+        return measured.surfaces(t, base)
     for key in ("length",) + (("n",) if kind != "file" else ()):
         if key not in t:
             raise InputError(f"[surface] {key} is required for kind = {kind!r}")
@@ -300,7 +318,10 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
         )
     )
     speeds, xi = scene_values.speeds(raw["loading"], tau, xi_length)
-    warnings = guidance.resolution_warnings(raw["surface"], surface.n, MIN_POINTS_PER_WAVELENGTH)
+    if kind == "measured":  # the load is on the scanned patch
+        from . import measured
+
+        loads = measured.patch_loads(surface, loads)
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
     run = scene_values.solver(solver)
@@ -318,6 +339,11 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
             f"[solver] method must be one of {', '.join(map(repr, valid))} with periodic = "
             f"{str(run['periodic']).lower()}, got {run['method']!r}"
         )
+    warnings = guidance.resolution_warnings(surface, kind, run["periodic"], MIN_POINTS_PER_WAVELENGTH)
+    if kind == "measured":  # warnings on the scan's boundary and cropping
+        from . import measured
+
+        warnings += measured.warnings_of(realisations)
     analysis = raw.get("analysis", {})
     _check_keys(analysis, "analysis")
     _check_keys(raw.get("outputs", {}), "outputs")
@@ -334,7 +360,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     from .directions import parse as parse_directions
 
     run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
-    return Scene(
+    scene = Scene(
         title=str(raw.get("title", Path(source).stem)),
         material=material,
         surface=surface,
@@ -358,6 +384,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
         **temperatures.scene_fields(raw, material),
         dma=temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None,
     )
+    return temperatures.with_material_warnings(scene)  # what the DMA data do not cover
 
 
 def load(path=None, *, overrides=()):

@@ -11,7 +11,9 @@ it, ``KEYS.append(Key(...))`` at import time works too) and read it in the parse
 
 from dataclasses import dataclass
 
-__all__ = ["Key", "KEYS", "SECTIONS", "keys_of", "names_of"]
+from bem.contact.options import MAXITER, RTOL
+
+__all__ = ["Key", "KEYS", "SECTIONS", "default", "keys_of", "names_of"]
 
 
 @dataclass(frozen=True)
@@ -93,7 +95,15 @@ KEYS = [
         "series; with a temperature column, a master curve and its shift law (see shift); relative to the "
         "scene file.",
     ),
-    Key("material", "dma_frequency_unit", "string", "", "rad/s", "rad/s | Hz", "Unit of the DMA frequencies."),
+    Key(
+        "material",
+        "dma_frequency_unit",
+        "string",
+        "",
+        "rad/s",
+        "rad/s | Hz",
+        "Unit of the DMA frequencies (or in the header).",
+    ),
     Key("material", "dma_terms_per_decade", "number", "", 3.0, "> 0", "Prony terms per decade of the DMA fit."),
     # [surface]
     Key(
@@ -102,8 +112,9 @@ KEYS = [
         "string",
         "",
         None,
-        "self_affine | sinusoid | file | sphere | cylinder",
-        "Rigid surface type (required).",
+        "self_affine | sinusoid | measured | file | sphere | cylinder",
+        "Rigid surface type (required): measured is a scan of part of a larger surface (any shape and format, "
+        "periodic or not); file is one square periodic cell of plain heights.",
     ),
     Key(
         "surface",
@@ -112,9 +123,18 @@ KEYS = [
         "m",
         None,
         "> 0",
-        "Side of the periodic cell, or of the isolated indenter's domain (required).",
+        "Side of the periodic cell, or of the isolated indenter's domain (required; measured: from the file).",
     ),
-    Key("surface", "n", "integer", "", None, ">= 2", "Grid points per side (required except for kind = file)."),
+    Key(
+        "surface",
+        "n",
+        "integer",
+        "",
+        None,
+        ">= 2 (measured: >= 4)",
+        "Grid points per side (required except for kind = file; measured: per side of the solved patch, "
+        "default its own pixels, a mirrored cell has 2 n).",
+    ),
     Key("surface", "hurst", "number", "", None, "(0, 1]", "self_affine: Hurst exponent H."),
     Key(
         "surface",
@@ -151,8 +171,25 @@ KEYS = [
     Key("surface", "amplitude", "number", "m", None, "> 0", "sinusoid: amplitude."),
     Key("surface", "wavelength", "number", "m", "length", "(0, length]", "sinusoid: wavelength."),
     Key("surface", "direction", "string", "", "x", "x | y | xy", "sinusoid: orientation of the crests' normal."),
-    Key("surface", "path", "string", "", None, ".npy | .txt | .csv", "file: height map, relative to the scene file."),
-    Key("surface", "unit", "string", "", "m", "m | mm | um | nm", "file: unit of the heights in the file."),
+    Key(
+        "surface",
+        "path",
+        "string",
+        "",
+        None,
+        "file: .npy | .txt | .csv; measured: any SurfaceTopography format",
+        "file: square height map (one row per x); measured: the scan (text matrices one row per y); relative to "
+        "the scene file.",
+    ),
+    Key(
+        "surface",
+        "unit",
+        "string",
+        "",
+        "file: m",
+        "m | mm | um | nm (measured also pm, A)",
+        "file: unit of the heights; measured: unit of heights and scan_size, only if the file has none.",
+    ),
     Key("surface", "radius", "number", "m", None, "> 0", "sphere, cylinder: radius (required)."),
     Key(
         "surface",
@@ -171,7 +208,7 @@ KEYS = [
         "N (N/m for 1-D)",
         None,
         "> 0",
-        "Normal force; a list sweeps loads (required).",
+        "Normal force; a list sweeps loads (required; measured: on the scanned patch).",
     ),
     Key("loading", "speeds", "list", "m/s", None, ">= 0", "Sliding speeds (or xi)."),
     Key(
@@ -188,8 +225,8 @@ KEYS = [
         "loading", "xi_time", "number", "s", "the longest creep time (1 s if elastic)", "> 0", "tau in xi = v tau / l."
     ),
     # [solver]
-    Key("solver", "rtol", "number", "", 1e-8, "(0, 1)", "Tolerance of the contact solver."),
-    Key("solver", "maxiter", "integer", "", 400, ">= 1", "Maximum active-set iterations per point."),
+    Key("solver", "rtol", "number", "", RTOL, "(0, 1)", "Tolerance of the contact solver."),
+    Key("solver", "maxiter", "integer", "", MAXITER, ">= 1", "Maximum active-set iterations per point."),
     Key("solver", "warm_start", "boolean", "", True, "true | false", "Start each speed from its neighbour."),
     Key("solver", "workers", "integer", "", 1, ">= 1", "Processes solving chunks of speeds in parallel."),
     Key("solver", "chunk", "integer", "", 0, ">= 0", "Speeds per task (0: split evenly over the workers)."),
@@ -229,6 +266,16 @@ KEYS = [
         "auto | active-set (periodic); auto | uniform | adaptive",
         "Solver variant.",
     ),
+    Key(
+        "solver",
+        "error_estimate",
+        "string",
+        "",
+        "indicators",
+        "indicators | refined | none",
+        "How each point's discretisation error is estimated: from the solution itself, by a solve on the "
+        "grid twice as fine (the cost of that solve), or not at all.",
+    ),
     # [outputs]
     Key("outputs", "friction_curve", "boolean", "", True, "true | false", "Friction and contact against xi."),
     Key("outputs", "fields", "boolean", "", True, "true | false", "fields.npz: pressure and displacement maps."),
@@ -263,7 +310,15 @@ KEYS = [
 # Keys parsed by viscobem_cli.scene.temperatures (temperature and master curves), viscobem_cli.scene.directions
 # (sliding direction) and viscobem_cli.scene.measured (measured topographies).
 KEYS += [
-    Key("material", "dma_modulus_unit", "string", "", "Pa", "Pa | kPa | MPa | GPa", "Unit of the DMA moduli."),
+    Key(
+        "material",
+        "dma_modulus_unit",
+        "string",
+        "",
+        "Pa",
+        "Pa | kPa | MPa | GPa",
+        "Unit of the DMA moduli (or in the header).",
+    ),
     Key(
         "material",
         "dma_temperature_unit",
@@ -271,7 +326,17 @@ KEYS += [
         "",
         "K",
         "K | C",
-        "Unit of the DMA table's temperature column (4-column tables).",
+        "Unit of the DMA table's temperature column (4-column tables); a kelvin value below 100 K is rejected "
+        "as looking like degrees Celsius.",
+    ),
+    Key(
+        "material",
+        "dma_columns",
+        "table",
+        "",
+        "by header name, else by position",
+        "{frequency, storage, loss, temperature} = a header name or a column number (1-based)",
+        "Which columns of the DMA table hold what, when the header's names are not recognised.",
     ),
     Key(
         "material",
@@ -280,7 +345,8 @@ KEYS += [
         "",
         None,
         '{law = "wlf", C1, C2, reference_temperature} | {law = "arrhenius", activation_energy, reference_temperature}',
-        "Time-temperature shift law (K, J/mol); with a 4-column DMA table its parameters are fitted.",
+        "Time-temperature shift law (K, J/mol). With a temperature column in the DMA table: all its constants "
+        "impose it, only law and reference_temperature fit it jointly with the Prony series.",
     ),
     Key(
         "loading",
@@ -288,7 +354,7 @@ KEYS += [
         "list",
         "K",
         None,
-        "numbers > 0; needs [material] shift",
+        "numbers >= 100 (kelvin); needs [material] shift",
         "One speed sweep per temperature.",
     ),
     Key(
@@ -306,26 +372,28 @@ KEYS += [
         "string",
         "",
         "plane",
-        "none | mean | plane | curvature",
-        "measured: detrending of the topography.",
+        "plane | none | mean | curvature",
+        "measured: polynomial removed from the solved patch (the same default as bem.surfaces.from_scan).",
     ),
     Key(
         "surface",
         "boundary",
         "string",
         "",
-        "isolated",
-        "isolated | periodic",
-        "measured: the measured patch as an isolated contact or a periodic cell.",
+        "periodic",
+        "periodic | isolated",
+        "measured: the patch as a periodic cell (a patch of a larger surface) or as the whole loaded domain of an "
+        "isolated contact (a scan of a whole finite body; warned about otherwise).",
     ),
     Key(
         "surface",
         "window",
         "string",
         "",
-        "tukey",
-        "tukey | hann | mirror | none",
-        "measured, periodic: window that makes the patch periodic.",
+        "mirror (none for a scan the file declares periodic)",
+        "mirror | periodic_component | tukey | hann | none",
+        "measured, periodic: how the patch is made periodic; mirror tiles it with its mirror images (a cell of "
+        "twice its side holding it 4 times, with 4 times the load: the same pressure).",
     ),
     Key("surface", "alpha", "number", "", 0.25, "[0, 1]", "measured, tukey window: tapered fraction of each side."),
     Key(
@@ -338,6 +406,17 @@ KEYS += [
         "measured: extent along x, y, only if the file has no size.",
     ),
     Key("surface", "channel", "integer", "", 0, ">= 0", "measured: height channel of a multi-channel file."),
+    Key(
+        "surface",
+        "patch",
+        "string or list",
+        "m",
+        "centre",
+        "centre | cover | [x0, y0] | [x0, y0, side]",
+        "measured: the square of the scan that is solved (cells are square): the largest centred one (warned about "
+        "when it is not the whole scan), every square covering the scan (one realisation each), or one from an "
+        "origin.",
+    ),
 ]
 
 
@@ -350,3 +429,11 @@ def names_of(section):
     """The valid key names of ``section``; the top level also lists the sections."""
     names = {k.name for k in keys_of(section)}
     return names | set(SECTIONS) if section == "" else names
+
+
+def default(section, name):
+    """The default of the key ``name`` of ``section`` (the one source the parser reads)."""
+    for k in keys_of(section):
+        if k.name == name:
+            return k.default
+    raise KeyError(f"[{section}] {name} is not a scene key")

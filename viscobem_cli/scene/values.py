@@ -9,6 +9,8 @@ import numpy as np
 from bem.checks import check_positive
 from bem.errors import InputError
 
+from .schema import default
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
@@ -61,30 +63,42 @@ def loads(value):
 
 
 def solver(t):
-    def integer(key, default, low):
-        v = t.get(key, default)
+    """The [solver] table with the schema's defaults (:data:`viscobem_cli.scene.schema.KEYS`)."""
+
+    def get(key):
+        return t.get(key, default("solver", key))
+
+    def integer(key, low):
+        v = get(key)
         if isinstance(v, bool) or not isinstance(v, int) or v < low:
             raise InputError(f"[solver] {key} must be an integer >= {low}, got {v!r}")
         return v
 
-    rtol = number("solver", "rtol", t.get("rtol", 1e-8))
+    rtol = number("solver", "rtol", get("rtol"))
     if not 0 < rtol < 1:
         raise InputError(f"[solver] rtol must be in (0, 1), got {rtol!r}")
-    warm = t.get("warm_start", True)
+    warm = get("warm_start")
     if not isinstance(warm, bool):
         raise InputError(f"[solver] warm_start must be true or false, got {warm!r}")
-    fold = t.get("fold_tol", 1e-6)
+    fold = get("fold_tol")
     if not (isinstance(fold, (int, float)) and 0 <= fold < 1):
         raise InputError(f"[solver] fold_tol must be in [0, 1) (0: no folding), got {fold!r}")
     scheduler = t.get("scheduler")
     if scheduler is not None and not (isinstance(scheduler, str) and scheduler):
         raise InputError(f"[solver] scheduler must be an address such as 'tcp://host:8786', got {scheduler!r}")
+    estimate = t.get("error_estimate", "indicators")
+    if estimate not in ("indicators", "refined", "none"):
+        raise InputError(
+            f"[solver] error_estimate must be 'indicators' (from the solution), 'refined' (a solve on the "
+            f"grid twice as fine) or 'none', got {estimate!r}"
+        )
     return {
         "rtol": float(rtol),
-        "maxiter": integer("maxiter", 400, 1),
+        "error_estimate": None if estimate == "none" else estimate,
+        "maxiter": integer("maxiter", 1),
         "warm_start": warm,
-        "workers": integer("workers", 1, 1),
-        "chunk": integer("chunk", 0, 0),
+        "workers": integer("workers", 1),
+        "chunk": integer("chunk", 0),
         "scheduler": scheduler,
         "fold_tol": float(fold),
     }

@@ -35,8 +35,16 @@ class ForceOperator:
         self.symbol = phase_symbol
         self.is_symmetric = False
 
+    @property
+    def size(self):
+        return self.shape[0]
+
     def displacement(self, f):
         return self.matrix @ f
+
+    def max_phase(self):
+        """Largest phase (rad) of the material's compliance over the mesh's wavenumbers."""
+        return 0.0 if self.is_symmetric else float(np.max(np.abs(np.angle(self.symbol))))
 
     def self_influence(self):
         return float(np.mean(np.diag(self.matrix)))

@@ -15,6 +15,7 @@ import numpy as np
 
 from ...checks import check_int, check_positive, show
 from ...contact import solve_contact
+from ...contact.options import MAXITER, RTOL
 from ...errors import ConvergenceError, InputError
 from ...materials.material import Material
 from ...result import SlidingResult
@@ -149,14 +150,14 @@ def solve_adaptive(
     *,
     speed,
     load,
-    rtol=1e-8,
+    rtol=RTOL,
     levels=3,
     buffer=1.0,
     gradient=0.05,
     refine_contact=True,
     sampling="centre",
     height=None,
-    maxiter=400,
+    maxiter=MAXITER,
     max_elements=20000,
     raise_on_failure=True,
 ):

@@ -1,13 +1,17 @@
-"""Nested iteration: the contact solver starts large periodic grids from the solution on the
-grid with half the points per axis (bem.contact.solve_contact)."""
+"""Nested iteration: the contact solver starts large grids (and strongly non-symmetric problems
+on any grid) from the solution on the grid with half the points per axis
+(bem.contact.solve_contact, bem.contact.start); the operators' grid transfers."""
 
 import numpy as np
 import pytest
 
 import bem
-from bem.contact import ContactOptions
-from bem.contact.start import coarse_start, prolong
+from bem.contact import ContactOptions, start
+from bem.contact.start import coarse_start
+from bem.halfspace.isolated import IsolatedHalfSpace
 from bem.halfspace.periodic import PeriodicHalfSpace
+
+prolong = PeriodicHalfSpace.prolong
 
 
 @pytest.mark.parametrize("shape", [(6,), (8, 6)])
@@ -26,16 +30,51 @@ def test_prolong_keeps_the_coarse_values_the_mean_and_the_sign(shape):
 
 def test_no_coarse_start_on_odd_or_small_grids():
     material = bem.Material.elastic(1e7)
-    min_size = ContactOptions().coarsen_min_size
 
     def never(*args):
         raise AssertionError("no coarse solve expected")
 
     odd = PeriodicHalfSpace((2**18 + 1,), 0.01, material, 0.0)
-    assert coarse_start(odd, np.zeros(odd.shape), never, min_size) == (None, 0.0, None)
-    small = PeriodicHalfSpace((256, 256), 0.01, material, 0.0)
-    assert small.size < min_size
-    assert coarse_start(small, np.zeros(small.shape), never, min_size) == (None, 0.0, None)
+    assert coarse_start(odd, np.zeros(odd.shape), never) == (None, 0.0, None)
+    h = np.zeros((256, 256))
+    small = PeriodicHalfSpace(h.shape, 0.01, material, 0.0)
+    assert small.size < start.COARSEN_MIN_SIZE
+    assert not start.wants_coarse_start(small, h, 1e3, ContactOptions())
+    big = PeriodicHalfSpace((512, 512), 0.01, material, 0.0)
+    assert start.wants_coarse_start(big, np.zeros(big.shape), 1e3, ContactOptions())
+    assert not start.wants_coarse_start(big, np.zeros(big.shape), 1e3, ContactOptions(coarsen=False))
+
+
+def test_strongly_nonsymmetric_problems_coarsen_on_small_grids_unless_nearly_in_full_contact():
+    rubber = bem.Material.standard_linear_solid(E0=1e3, E_inf=1e7, creep_time=0.01)
+    s = bem.surfaces.self_affine(256, 0.01, hurst=0.8, scales=16, rms_height=2e-5, seed=2, dim=1)
+    op = PeriodicHalfSpace(s.shape, s.length, rubber, 1.0)
+    assert op.max_phase() > np.pi / 4
+    assert start.wants_coarse_start(op, s.heights, 10.0, ContactOptions())
+    assert not start.wants_coarse_start(op, s.heights, 1e9, ContactOptions())  # nearly full contact
+    tiny = PeriodicHalfSpace((64,), s.length, rubber, 1.0)
+    assert tiny.size < start.COARSEN_MIN_SIZE_STRONG
+    assert not start.wants_coarse_start(tiny, s.heights[::4], 10.0, ContactOptions())
+
+
+@pytest.mark.parametrize("shape", [(6,), (8, 6)])
+def test_isolated_grid_transfers_keep_the_mean_the_sign_and_linear_fields(shape):
+    """Isolated grids are cell-centred: a coarse element is the mean of the two (four) fine
+    elements it covers, and interpolation is linear between coarse centres, zero beyond the
+    domain; a linear field is carried exactly away from the ends."""
+    op = IsolatedHalfSpace(tuple(2 * n for n in shape), 0.01, bem.Material.elastic(1e7), 0.0)
+    rng = np.random.default_rng(1)
+    fine = np.maximum(rng.standard_normal(op.shape), 0.0)
+    coarse = op.restrict(fine)
+    assert coarse.shape == shape and coarse.mean() == pytest.approx(fine.mean(), rel=1e-14)
+    back = op.prolong(np.maximum(rng.standard_normal(shape), 0.0))
+    assert back.shape == op.shape and back.min() >= 0.0
+    x = (np.arange(op.shape[0]) + 0.5) / op.shape[0]
+    line = np.broadcast_to(x.reshape((-1,) + (1,) * (len(shape) - 1)), op.shape)
+    inner = tuple(slice(2, -2) for _ in shape)
+    np.testing.assert_allclose(op.prolong(op.restrict(line))[inner], line[inner], rtol=0, atol=1e-14)
+    assert op.coarsened().shape == shape
+    assert IsolatedHalfSpace((7,), 0.01, bem.Material.elastic(1e7), 0.0).coarsened() is None
 
 
 @pytest.mark.parametrize(
@@ -45,7 +84,7 @@ def test_coarse_start_changes_nothing_but_the_cost(material):
     """512² at ~10-20 % contact, converged to rtol 1e-10 with and without the coarse start:
     the same pressure (to ~1e-8, the tolerance) and fewer products with it (elastic on the
     benchmark surface: 140 -> 99 at 512², 184 -> 108 at 1024²)."""
-    assert 512**2 >= ContactOptions().coarsen_min_size
+    assert 512**2 >= start.COARSEN_MIN_SIZE
     s = bem.surfaces.self_affine(512, 0.01, hurst=0.8, scales=64, rms_height=2e-5, seed=3)
     out = {}
     for flag in (False, True):
@@ -80,7 +119,7 @@ def test_warm_start_goes_through_the_coarse_grid_and_is_kept_only_where_it_is_cl
 
     s = bem.surfaces.from_heights(surface_heights(512), LENGTH)
     m = bem.Material.elastic(1e7)
-    assert s.heights.size >= ContactOptions().coarsen_min_size
+    assert s.heights.size >= start.COARSEN_MIN_SIZE
     cold = bem.solve(s, m, speed=0.0, load=6.0)
     own = bem.solve(s, m, speed=0.0, load=6.0, initial=cold.pressure)
     assert own.iterations == 1  # the fine warm start was kept: it is the answer

@@ -13,10 +13,11 @@ from conftest import dense_operator
 
 import bem
 import bem.contact.line_preconditioner as line_module
-from bem.contact import ContactOptions
-from bem.contact import inner as contact_inner
+from bem.contact import ContactOptions, solver
 from bem.contact.line_preconditioner import line_preconditioner as lines_of
 from bem.halfspace.periodic import PeriodicHalfSpace
+
+BUDGET = ContactOptions().line_budget
 
 L = 0.01
 RUBBER = bem.Material.from_prony(E0=1e6, moduli=np.full(20, (1e9 - 1e6) / 20), times=np.logspace(-10, 2, 20))
@@ -38,7 +39,7 @@ def _dense_creep(op):
 
 def test_symbol_is_elastic_times_creep_along_x():
     op = PeriodicHalfSpace((12, 10), L, RUBBER, FAST)
-    assert contact_inner.max_phase(op) > np.pi / 4  # strongly non-symmetric: the case it serves
+    assert op.max_phase() > np.pi / 4  # strongly non-symmetric: the case it serves
     G = dense_operator(PeriodicHalfSpace(op.shape, L, bem.Material.elastic(1.0, nu=RUBBER.nu), 0.0))
     A = dense_operator(op)
     np.testing.assert_allclose(A, G @ _dense_creep(op), rtol=0, atol=1e-12 * np.abs(A).max())
@@ -76,7 +77,7 @@ def test_line_preconditioner_is_restricted_creep_inverse_after_elastic_inverse(s
         line_module, "_line_matrices", lambda kernel, x, valid: built.append(len(x)) or line_matrices(kernel, x, valid)
     )
     cache = {}
-    got = lines_of(op, contact_set, cache=cache)(r)
+    got = lines_of(op, contact_set, cache=cache, budget=BUDGET)(r)
     np.testing.assert_allclose(got, expected, rtol=tol, atol=tol * np.abs(expected).max())
     assert sum(built) == shape[1] - 1  # every line with contact
     # a second call with one line changed reuses the other lines' inverses and stays exact
@@ -88,14 +89,14 @@ def test_line_preconditioner_is_restricted_creep_inverse_after_elastic_inverse(s
     full[:] = 0.0
     full[idx] = r
     w = elastic.pressure_from_displacement(full.reshape(shape)).ravel()[idx]
-    got = lines_of(op, contact_set, cache=cache)(r)
+    got = lines_of(op, contact_set, cache=cache, budget=BUDGET)(r)
     expected = np.linalg.solve(C[np.ix_(idx, idx)], w)
     np.testing.assert_allclose(got, expected, rtol=tol, atol=tol * np.abs(expected).max())
     assert sum(built) == 1  # line y = 0 only
     assert all(np.array_equal(cache[y][1], kept[y]) for y in kept if y != 0)
     # no line preconditioner where it does not apply, or where it would exceed its memory budget
-    assert lines_of(op.symmetric_part(), contact_set) is None
-    assert lines_of(PeriodicHalfSpace((16,), L, RUBBER, FAST), np.ones(16, bool)) is None
+    assert lines_of(op.symmetric_part(), contact_set, budget=BUDGET) is None
+    assert lines_of(PeriodicHalfSpace((16,), L, RUBBER, FAST), np.ones(16, bool), budget=BUDGET) is None
     assert lines_of(op, contact_set, budget=0) is None
 
 
@@ -110,7 +111,7 @@ def test_line_preconditioner_threads_change_nothing(monkeypatch):
     results = []
     for workers in (1, 2):
         with bem.use_threads(workers):
-            results.append(lines_of(op, contact_set)(r))
+            results.append(lines_of(op, contact_set, budget=BUDGET)(r))
     np.testing.assert_array_equal(results[0], results[1])
     assert np.all(np.isfinite(results[0])) and np.any(results[0] != 0)
 
@@ -137,12 +138,13 @@ def test_line_preconditioner_same_answer_fewer_products():
     assert lines.matvecs < 0.8 * plain.matvecs
 
 
-def test_line_attempt_that_stalls_falls_back():
-    """A line-preconditioned attempt whose residual stops reaching new lows (here at once,
-    RESIDUAL_STALL = 0) hands over to the unpreconditioned careful solve, which converges;
-    the message and the counts include both attempts."""
+def test_line_attempt_that_stalls_falls_back(monkeypatch):
+    """A line-preconditioned attempt whose residual stops reaching new lows (here at once:
+    ``bem.contact.solver.LINES_RESIDUAL_STALL = 0``) hands over to the unpreconditioned careful
+    solve, which converges; the message and the counts include both attempts."""
     s, kw = _rubber_problem(32, FAST)
     reference = bem.solve(s, RUBBER, **kw)
-    r = bem.solve(s, RUBBER, contact_options=ContactOptions(residual_stall=0), **kw)
+    monkeypatch.setattr(solver, "LINES_RESIDUAL_STALL", 0)
+    r = bem.solve(s, RUBBER, **kw)
     assert r.success and "after a first attempt of 1 " in r.message
     np.testing.assert_allclose(r.pressure, reference.pressure, rtol=0, atol=1e-6 * reference.pressure.max())

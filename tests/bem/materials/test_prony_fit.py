@@ -128,3 +128,44 @@ def test_optimised_times_match_a_spectrum_between_the_grid_times():
     assert max(d_grid) > 1e-2 and max(d_moved) < 1e-9
     assert moved[1].size == 11
     np.testing.assert_allclose(np.sort(moved[2]), np.sort(m.relaxation_times), rtol=1e-9)
+
+
+def test_fit_report_compares_the_loss_with_the_measured_value():
+    """Noise-free data whose E'' falls to 3e-7 |E*| in the glassy tail (below the fit's weight floor
+    1e-4 |E*|). The report used to compare the fit with the floored value there and said 99.7 % for
+    an exact fit; against the measured E'' it says what is true: measured 1.3e-15 (bound 1e-9)."""
+    m = Material.from_prony(E0=1e6, moduli=[1e7, 2e7, 1e7], times=[1e-1, 1e-2, 1e-3])
+    w = np.logspace(-2, 9, 56)
+    e = m.complex_modulus(w)
+    assert np.min(e.imag / np.abs(e)) < 1e-6
+    fit = Material.fit_prony(w, e.real, e.imag)
+    r = fit.fit_report
+    true = np.max(np.abs(fit.complex_modulus(w).imag / e.imag - 1))
+    assert r.loss_max < 1e-9 and r.loss_max == pytest.approx(true, rel=1e-6, abs=1e-15)
+
+
+def test_fit_report_gives_the_worst_points():
+    """One loss point 20 % off: it heads the worst E'' points, with its frequency and values."""
+    m = dma_truth()
+    e1, e2 = noisy(m, 1)
+    e2[60] *= 1.2
+    r = Material.fit_prony(W, e1, e2).fit_report
+    worst = r.worst_loss[0]
+    assert worst["frequency"] == W[60] and worst["measured"] == e2[60] and worst["error"] == r.loss_max
+    assert abs(worst["fitted"] / e2[60] - 1) == pytest.approx(worst["error"], rel=1e-12)
+    assert len(r.worst_storage) == 3 and r.worst_storage[0]["error"] == r.storage_max
+    assert "temperature" not in worst  # a single sweep
+    d = r.as_dict()
+    assert d["worst_loss"][0]["frequency"] == W[60] and d["glassy_reached"]
+    assert not d["relaxed_reached"]  # 1e-4 rad/s is 1 decade below the slowest rate: E' still falls 17 %
+
+
+def test_relaxed_modulus_that_the_data_cannot_give_is_named():
+    """Data that end where the material still relaxes steeply give E0 <= 0: the error names the
+    lowest frequency and E' there."""
+    m = dma_truth()
+    w = np.logspace(-2, 8, 101)
+    e = m.complex_modulus(w)
+    rng = np.random.default_rng(1)
+    with pytest.raises(InputError, match=r"E0 <= 0: at their lowest frequency \(0.01 rad/s, E' = "):
+        Material.fit_prony(w, e.real * (1 + 0.01 * rng.standard_normal(w.size)), e.imag)

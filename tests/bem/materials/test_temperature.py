@@ -141,3 +141,91 @@ def test_any_law_and_series_superpose_exactly(c1, c2, dt, log_times):
     w = np.logspace(-8, 8, 65)
     np.testing.assert_allclose(hot.complex_modulus(w), m.complex_modulus(a * w), rtol=1e-13, atol=0)
     np.testing.assert_allclose(hot.complex_compliance(w), m.complex_compliance(a * w), rtol=1e-13, atol=0)
+
+
+# ---------------------------------------------------------------- temperatures that make sense
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: WLF(8.86, 101.6, 23.0),
+        lambda: Arrhenius(1e5, 23.0),
+        lambda: LAWS["wlf"](23.0),
+        lambda: make_seed().at_temperature(60.0, LAWS["wlf"]),
+    ],
+)
+def test_a_temperature_in_celsius_is_rejected(make):
+    """``WLF(..., 23)`` (degrees Celsius typed as kelvin) used to be accepted silently."""
+    with pytest.raises(InputError, match=r"looks like degrees Celsius \(use \d+(\.\d+)? K\)"):
+        make()
+
+
+def test_the_rejection_names_the_parameter():
+    with pytest.raises(InputError, match="reference_temperature"):
+        WLF(8.86, 101.6, 23.0)
+    with pytest.raises(InputError, match="^T "):
+        make_seed().at_temperature(50.0, LAWS["wlf"])
+    assert temperature.check_kelvin("T", 100.0) == 100.0
+
+
+def test_wlf_below_its_range_is_warned_about():
+    """WLF(8.86, 101.6 K, 296.15 K) at -60 C: 8.9 K above its pole, log a_T = 39.5 (a_T = 3e39),
+    used to pass silently."""
+    law = LAWS["wlf"]
+    assert law.lowest_believed == pytest.approx(296.15 - 101.6 + 10.0)
+    texts = law.range_warnings(213.15)
+    assert len(texts) == 1 and "log10 a_T = 39.5 at 213.15 K" in texts[0] and "15 decades" in texts[0]
+    below = law.range_warnings(200.0)
+    assert len(below) == 2 and "below the WLF law's range" in below[0] and "204.55 K" in below[0]
+    assert law.range_warnings(250.0) == () and law.range_warnings(400.0) == ()
+    assert law.range_warnings(250.0, max_log_shift=3.0) != ()  # log a_T = 6.4 at 250 K
+    hot = LAWS["arrhenius"].range_warnings(200.0)  # 120 kJ/mol: 10.3 decades
+    assert hot == () and Arrhenius(300e3, 296.15).range_warnings(200.0) != ()
+    m = make_seed().at_temperature(213.15, law)
+    assert m.warnings == texts and m.extrapolation_warnings(1.0, 2.0) == texts
+
+
+@pytest.mark.parametrize("log_a", [306.0, 309.0, -330.0])
+def test_shifts_beyond_floating_point_are_input_errors(log_a):
+    """log a_T above 308 used to raise a raw OverflowError, and between 305 and 308 the material got
+    infinite creep times (the seed's creep time is 0.01 s x 3: 1e306 of it overflows)."""
+    with pytest.raises(
+        InputError, match=f"T = 300 K is outside the shift law's range: it gives log10 a_T = {log_a:.4g}"
+    ):
+        make_seed().at_temperature(300.0, lambda T: log_a)
+
+
+def test_wlf_close_to_its_pole_is_an_input_error_not_an_overflow():
+    law = LAWS["wlf"]
+    with pytest.raises(InputError, match="outside the shift law's range"):
+        make_seed().at_temperature(law.reference_temperature - law.C2 + 0.5, law)
+
+
+def test_a_law_referred_to_another_temperature_gives_the_same_shifts():
+    law = LAWS["wlf"]
+    moved = law.referenced_to(273.15)
+    T = np.linspace(250.0, 360.0, 12)
+    np.testing.assert_allclose(moved(T), law(T) - law(273.15), rtol=1e-13, atol=1e-13)
+    arr = LAWS["arrhenius"].referenced_to(273.15)
+    np.testing.assert_allclose(arr(T), LAWS["arrhenius"](T) - LAWS["arrhenius"](273.15), rtol=1e-13, atol=1e-13)
+    with pytest.raises(InputError, match="WLF pole"):
+        law.referenced_to(190.0)
+
+
+@pytest.mark.parametrize("kind", ["wlf", "arrhenius"])
+def test_a_law_through_shifts_known_up_to_a_constant(kind):
+    """Shifts of two chains, each relative to its own first sweep (unknown offsets 3.1 and -7.4
+    decades), the reference temperature between sweeps: the law with a free constant per chain
+    comes back to 1e-9, zero at the reference by its form."""
+    from bem.materials.temperature import fit_law
+
+    law = LAWS[kind]
+    T = np.linspace(255.0, 355.0, 11)
+    groups = np.array([0] * 5 + [1] * 6)
+    y = law(T) + np.where(groups == 0, 3.1, -7.4)
+    back, offsets = fit_law(kind, T, y, law.reference_temperature, groups=groups)
+    np.testing.assert_allclose(back.parameters, law.parameters, rtol=1e-9)
+    np.testing.assert_allclose(offsets, [3.1, -7.4], rtol=1e-9)
+    with pytest.raises(InputError, match="more temperature"):
+        fit_law(kind, T[:2], y[:2], law.reference_temperature, groups=[0, 1])
