@@ -44,7 +44,14 @@ the friction at E_inf/E0 = 10, at every resolution.) Properties:
 - unrolled, ``alpha_e = S_e eps_e + c_e sum_{f < e} Gamma_{e,f} q_f^T eps_f`` with scalar
   products ``Gamma`` of the ``gamma`` between, truncated where they fall below ``tol``
   (:func:`condensed_memory`), or kept as unknowns with a block-bidiagonal
-  ``L alpha = R eps`` (:func:`memory_operators`).
+  ``L alpha = R eps`` (:func:`memory_operators`);
+- the only thing an element passes downstream is one number per row and strain component, its
+  outflow value ``beta_e = r^T alpha_e``. Keeping those as the unknowns,
+  ``alpha_e = S_e eps_e + c_e beta_{e-1}`` and ``beta_e - gamma_e beta_{e-1} = q_e^T eps_e``
+  (:func:`state_operators`), is exact, has a third of the unknowns of ``alpha`` and couples each
+  point only to its own element and the outflow of the one upstream, however long the memory.
+  The truncated memory instead couples a point to every element within its reach
+  (:func:`memory_reach`): cheaper only where that reach is an element or two.
 """
 
 from __future__ import annotations
@@ -54,7 +61,14 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["reference_element", "element_blocks", "memory_operators", "condensed_memory"]
+__all__ = [
+    "reference_element",
+    "element_blocks",
+    "memory_operators",
+    "state_operators",
+    "memory_reach",
+    "condensed_memory",
+]
 
 
 def reference_element():
@@ -178,6 +192,61 @@ def memory_operators(keys, x, ell, cells):
     ).tocsr()
     R = sp.coo_matrix((S.ravel(), (blk_r.ravel(), blk_c.ravel())), shape=(n, n)).tocsr()
     return _unsort(L, order), _unsort(R, order)
+
+
+def state_operators(keys, x, ell, cells):
+    """Exact memory through the outflow values ``beta`` of the elements (see the module docstring).
+
+    Returns sparse ``(D, E, L, R)`` with ``alpha = D eps + E beta`` and ``L beta = R eps``: ``D``
+    (n, n) holds each element's own ``S_e``, ``E`` (n, m) its ``c_e`` on the outflow of the element
+    upstream, ``L`` (m, m) is unit lower bidiagonal with ``-gamma_e`` below the diagonal and ``R``
+    (m, n) holds ``q_e^T = r^T S_e``; ``m`` is the number of elements crossed by all rows (in flow
+    order along each row). Points in the given order; parameters as :func:`memory_operators`.
+    """
+    order, first, length, opens = _elements(keys, x, cells)
+    n = order.size
+    ne = first.size
+    S, c = _row_blocks(length, opens, ell)
+    _, _, _, _, r = reference_element()
+    loc = np.arange(3)
+    pts = first[:, None] + loc[None, :]  # (ne, 3) sorted point indices of each element
+    inv = np.empty(n, dtype=int)
+    inv[order] = np.arange(n)
+    pts = order[pts]  # back to the given order
+    D = sp.coo_matrix((S.ravel(), (np.repeat(pts, 3, axis=1).ravel(), np.tile(pts, (1, 3)).ravel())), shape=(n, n))
+    up = np.flatnonzero(~opens)
+    E = sp.coo_matrix((c[up].ravel(), (pts[up].ravel(), np.repeat(up - 1, 3))), shape=(n, ne))
+    gamma = c[up] @ r
+    L = sp.coo_matrix(
+        (
+            np.concatenate([np.ones(ne), -gamma]),
+            (np.concatenate([np.arange(ne), up]), np.concatenate([np.arange(ne), up - 1])),
+        ),
+        shape=(ne, ne),
+    )
+    q = np.einsum("eij,i->ej", S, r)
+    R = sp.coo_matrix((q.ravel(), (np.repeat(np.arange(ne), 3), pts.ravel())), shape=(ne, n))
+    return D.tocsr(), E.tocsr(), L.tocsr(), R.tocsr()
+
+
+def memory_reach(keys, x, ell, cells, tol=1e-13):
+    """Mean number of upstream elements the truncated memory (:func:`condensed_memory`) couples
+    to each element: the ``f < e`` of its row with ``prod_{g=f+1}^{e-1} gamma_g >= tol``."""
+    _, first, length, opens = _elements(keys, x, cells)
+    ne = first.size
+    if ne == 0:
+        return 0.0
+    _, _, c = element_blocks(_zeta(length, ell))
+    _, _, _, _, r = reference_element()
+    gamma = np.clip(c @ r, 1e-300, 1.0)
+    gamma[opens] = 1.0  # never multiplied in: a row's first element has nothing upstream
+    # log Gamma_{e,f} = C[e-1] - C[f] with C the running sum of log gamma (non-increasing)
+    C = np.cumsum(np.log(gamma))
+    row_first = np.maximum.accumulate(np.where(opens, np.arange(ne), 0))
+    e = np.arange(1, ne)
+    fmin = np.searchsorted(-C, -C[e - 1] + math.log(tol), side="left")
+    reach = np.where(opens[e], 0, e - np.maximum(fmin, row_first[e]))
+    return float(np.sum(np.maximum(reach, 0)) / ne)
 
 
 def condensed_memory(keys, x, ells, weights, cells, tol=1e-13):

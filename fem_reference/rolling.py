@@ -42,20 +42,35 @@ class _BandEdge(Exception):
     """The contact reached an end of the candidate band."""
 
 
+# Entries of the work arrays of one flexibility call (unknowns times candidate nodes solved
+# together): solving every candidate at once held arrays of the system's size per candidate.
+FLEXIBILITY_ENTRIES = 5e7
+
+
+def _flexibility(op, top_dofs, ydofs):
+    """Depression of every top node (rows) per unit downward force on each candidate (columns)."""
+    w = np.empty((top_dofs.size, ydofs.size))
+    chunk = max(1, int(FLEXIBILITY_ENTRIES // op.n_unknowns))
+    for lo in range(0, ydofs.size, chunk):
+        cols = np.arange(lo, min(lo + chunk, ydofs.size))
+        F = np.zeros((op.ops.basis.N, cols.size))
+        F[ydofs[cols], np.arange(cols.size)] = -1.0  # unit downward force on the body
+        u, _, _ = op.solve(F, strains=False)
+        w[:, cols] = -u[top_dofs]
+    return w
+
+
 def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, active_width):
     """Factor, condense onto the candidate nodes, solve the contact and the fields."""
     t0 = time.perf_counter()
     ops = quadrature_operators(hs.mesh, "plane")
-    cmask = bool(condense)
-    op = steady_operator(ops, material, V, solver=solver, condense=cmask)
+    op = steady_operator(ops, material, V, solver=solver, condense=condense)
     t1 = time.perf_counter()
 
     top = top_surface(ops.basis)
     cand = (top.x >= band[0] - 1e-12 * abs(band[0])) & (top.x <= band[1] + 1e-12 * abs(band[1]))
     ydofs = top.ydofs[cand]
-    F = np.zeros((ops.basis.N, ydofs.size))
-    F[ydofs, np.arange(ydofs.size)] = -1.0  # unit downward force on the body
-    u_unit, _, _ = op.solve(F)  # one call, every candidate node a right-hand side
+    w_top = _flexibility(op, top.ydofs, ydofs)
     if solver == "auto" and op.factor.name != "splu" and not op.residual <= op.residual_limit:
         # PARDISO perturbs small pivots of the saddle-point system; where that leaves its solve
         # off (measured: residual 1.7e5 on a modulus-ratio-1000 solid at s = 0.3, 3e-9 with
@@ -63,10 +78,8 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
         log.warning(
             "%s solve residual %.2e > %.1e: factoring with SuperLU", op.factor.name, op.residual, op.residual_limit
         )
-        op = steady_operator(ops, material, V, solver="splu", condense=cmask)
-        u_unit, _, _ = op.solve(F)
-    w_top = -u_unit[top.ydofs]  # depression at every top node per unit force
-    del u_unit
+        op = steady_operator(ops, material, V, solver="splu", condense=op.condensed)
+        w_top = _flexibility(op, top.ydofs, ydofs)
     t2 = time.perf_counter()
 
     xc = top.x[cand]
@@ -81,7 +94,9 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
         raise _BandEdge()
     t3 = time.perf_counter()
 
-    u, p, alpha = op.solve(F @ sol.lam)
+    f = np.zeros(ops.basis.N)
+    f[ydofs] = -sol.lam  # the contact forces on the body
+    u, p, alpha = op.solve(f)
     # the contact condition as the field solve satisfies it: gaps from the displaced surface
     gap_field = -u[ydofs] + xc**2 / (2 * R) - sol.d
     residual = complementarity_residual(sol.lam, gap_field, sol.active, P, gap_scale(sol.d, hc[sol.active]))
@@ -100,6 +115,7 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
         pres=pres,
         w=w_top[cand],
         edges=(trail, lead),
+        candidates=int(ydofs.size),
         u=u,
         p=p,
         alpha=alpha,
@@ -175,11 +191,9 @@ def rolling_cylinder(
         settle (at most ``passes`` meshes); use it for real rubbers (large modulus
         ratios, many terms).
     condense : {"auto", True, False}
-        Eliminate the viscous strains (:mod:`fem_reference.condense`) instead of keeping
-        them as unknowns; ``"auto"``: on the graded mesh (where the fine, streamwise
-        elongated elements make SuperLU fill the monolithic system: 238M factor entries
-        for 152k unknowns, against 30M for the 14k condensed ones, 8-term rubber), not on
-        the uniform one.
+        Eliminate the viscous strains through their truncated memory instead of carrying them
+        by the elements' outflow values (:mod:`fem_reference.steady`); ``"auto"``: the terms
+        whose memory reaches at most an element upstream (:func:`fem_reference.steady.condensable`).
     layer_floor : float
         Graded mesh: smallest leading-edge element, in edge elements.
     passes : int
@@ -205,7 +219,7 @@ def rolling_cylinder(
     passes = check_int("passes", passes, 1, 50)
     t_start = time.perf_counter()
     given = material
-    kw = dict(solver=solver, maxiter=maxiter, condense=(mesh == "graded") if condense == "auto" else condense)
+    kw = dict(solver=solver, maxiter=maxiter, condense=condense)
     if mesh == "uniform":
         material, terms, hs, out, npass = _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw)
     else:
@@ -270,13 +284,14 @@ def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, pass
             continue
         new_trail, new_lead = out["edges"]
         log.info(
-            "graded pass %d: edges [%.6g, %.6g] -> [%.6g, %.6g], %d unknowns, %s",
+            "graded pass %d: edges [%.6g, %.6g] -> [%.6g, %.6g], %d unknowns, %d candidate nodes, %s",
             npass,
             trail,
             lead,
             new_trail,
             new_lead,
             out["op"].n_unknowns,
+            out["candidates"],
             ", ".join(f"{k} {v:.2f} s" for k, v in out["timings"].items()),
         )
         # the trailing edge against its own elements, the leading edge against the smallest ones

@@ -17,13 +17,19 @@ satisfy::
 
 ``K_dev = B^T W D_dev B``, ``G = B^T W m N``, ``M = N^T W N``, ``c = 3 (1 - 2 nu)``,
 ``L_k alpha = R_k eps`` the element-wise streamline memory of
-:mod:`fem_reference.memory`. The system is sparse and not symmetric. A term may
-instead be condensed: ``alpha_k = A_k eps`` with the truncated explicit memory ``A_k``
-(:func:`fem_reference.memory.condensed_memory`), so that ``B`` becomes ``B_v = (I - sum_k g_k A_k) B`` in the
-first two block rows and the term has no unknowns. That trades unknowns for a band along
-the streamlines of width ``~ 30 V tau_k``: cheap where the elements are long compared
-with ``V tau_k``, and the only affordable form on strongly graded meshes, where the
-monolithic system fills under SuperLU.
+:mod:`fem_reference.memory`. The system is sparse and not symmetric.
+
+Each term's viscous strain is not kept at every point: an element passes downstream only its
+outflow values ``beta_k`` (one per row crossing it and strain component), and ``alpha_k =
+D_k eps + E_k beta_k`` with ``L_k beta_k = R_k eps``
+(:func:`~fem_reference.memory.state_operators`), exact. The ``D_k`` part joins the strain
+operator, ``B_v = (I - sum_k g_k D_k) B``, and ``beta_k`` are the unknowns of the third block
+row. Every coupling stays within an element and its upstream neighbour, so the system's entries
+grow linearly with the number of terms and of elements, whatever ``V tau_k``. A term whose
+memory is short may instead be condensed: ``alpha_k = A_k eps`` with the truncated memory
+``A_k`` (:func:`~fem_reference.memory.condensed_memory`) joins ``B_v`` and the term has no
+unknowns; that is cheaper only while ``A_k`` reaches an element or two upstream
+(:func:`condensable`).
 
 Boundary conditions: bottom fixed, sides on rollers (``u_x = 0``), top free except for
 the contact forces.
@@ -38,10 +44,9 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .condense import band_width
 from .kinematics import deviatoric_matrix, inverse_bulk_modulus, mixed_blocks, trace_vector
 from .linsolve import RESIDUAL_LIMIT, factorize, solve_refined
-from .memory import condensed_memory, memory_operators
+from .memory import condensed_memory, memory_operators, memory_reach, state_operators
 
 __all__ = ["SteadyOperator", "steady_operator", "condensable", "viscous_strain"]
 
@@ -56,7 +61,7 @@ class SteadyOperator:
     (force balance against the load, constraints against their own terms:
     :func:`~fem_reference.linsolve.relative_residual`) and ``residual_limit`` that limit
     (:func:`~fem_reference.linsolve.residual_limit`); ``condensed`` flags the terms whose viscous
-    strains were eliminated.
+    strains were eliminated (the others are carried by their elements' outflow values).
     """
 
     ops: object
@@ -68,12 +73,15 @@ class SteadyOperator:
     n_unknowns: int
     matrix: object = None
     condensed: np.ndarray = None
+    states: dict = None
     residual: float = 0.0
     residual_limit: float = RESIDUAL_LIMIT
     timings: dict = None
 
-    def solve(self, forces):
+    def solve(self, forces, strains=True):
         """Solve for nodal ``forces`` of shape ``(N_u,)`` or ``(N_u, m)`` (N/m).
+
+        ``strains=False`` leaves ``alpha`` empty (it holds a field per term and right-hand side).
 
         Returns
         -------
@@ -98,15 +106,21 @@ class SteadyOperator:
         p = self.ops.N_p @ x[off : off + npr] * E
         off += npr
         alpha = []
-        eps = None
+        if not strains:
+            return u, p, alpha
+        eps = self.ops.B @ u
+        ncomp = self.ops.ncomp
         for k, tau in enumerate(self.material.relaxation_times):
             if self.condensed[k]:
-                if eps is None:
-                    eps = self.ops.B @ u
                 alpha.append(viscous_strain(self.ops, self.speed * tau, eps))
-            else:
-                alpha.append(x[off : off + self.sizes[2]])
-                off += self.sizes[2]
+                continue
+            D, E, size = self.states[k]
+            beta = x[off : off + size]
+            off += size
+            e = eps.reshape((-1, ncomp) + eps.shape[1:])
+            b = beta.reshape((-1, ncomp) + beta.shape[1:])
+            a = np.stack([D @ e[:, i] + E @ b[:, i] for i in range(ncomp)], axis=1)
+            alpha.append(a.reshape(eps.shape))
         return u, p, alpha
 
 
@@ -126,11 +140,22 @@ def _fixed_dofs(basis):
     return np.unique(np.concatenate([bottom, sides]))
 
 
-def condensable(ops, material, speed, max_band=8.0):
-    """Mask of the terms whose truncated memory couples at most ``max_band`` points on average."""
+# A term is condensed while its truncated memory reaches at most this many elements upstream on
+# average. Condensed, it adds no unknowns, and its band joins the others' (the entries of B_v
+# follow the longest reach, not the number of terms); carried by the outflow values its entries
+# stay local, but the system is harder for the direct solvers (measured on a 10-term rubber at
+# its friction peak: PARDISO's first residual 1 against 3e-9 condensed, SuperLU's factor 6 times
+# PARDISO's). So only terms whose memory spans most of a row (several tens of elements, where the
+# band would grow with the square of the row) are carried by their outflow values.
+MAX_REACH = 60.0
+
+
+def condensable(ops, material, speed, max_reach=MAX_REACH):
+    """Mask of the terms whose truncated memory reaches at most ``max_reach`` elements upstream
+    on average (:func:`~fem_reference.memory.memory_reach`)."""
     return np.array(
         [
-            speed * tau > 0 and band_width(ops.row, ops.points[0], speed * tau) <= max_band
+            speed * tau > 0 and memory_reach(ops.row, ops.points[0], speed * tau, ops.cell) <= max_reach
             for tau in material.relaxation_times
         ],
         dtype=bool,
@@ -149,9 +174,10 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False):
         Rolling speed ``V`` (m/s), ``>= 0``.
     solver : str
         See :func:`fem_reference.linsolve.factorize`.
-    condense : bool or array of bool
-        Eliminate the viscous strains of these terms (all with ``True``) through the
-        truncated operator of :mod:`fem_reference.condense`; the others stay unknowns.
+    condense : bool, "auto" or array of bool
+        Eliminate the viscous strains of these terms (all with ``True``, those of
+        :func:`condensable` with ``"auto"``) through their truncated memory; the others are
+        carried by their elements' outflow values.
     """
     t0 = time.perf_counter()
     mb = mixed_blocks(ops, material.nu)
@@ -159,25 +185,39 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False):
     B = ops.B
     g = material.moduli / material.E_inf
     ntau = g.size
-    cmask = np.broadcast_to(np.asarray(condense, dtype=bool), (ntau,)).copy()
+    if isinstance(condense, str):
+        if condense != "auto":
+            raise ValueError(f"condense must be a bool, 'auto' or a mask, got {condense!r}")
+        cmask = condensable(ops, material, speed)
+    else:
+        cmask = np.broadcast_to(np.asarray(condense, dtype=bool), (ntau,)).copy()
     cmask &= speed * material.relaxation_times > 0
 
     free = np.setdiff1d(np.arange(B.shape[1]), _fixed_dofs(ops.basis))
     Bf = B[:, free]
     ncomp = ops.ncomp
     eye = sp.identity(ncomp, format="csr")
-    Bv = Bf
+    n = ops.n_points
+    S = sp.csr_matrix((n, n))
     if np.any(cmask):
         S = condensed_memory(ops.row, ops.points[0], speed * material.relaxation_times[cmask], g[cmask], ops.cell)
-        Bv = (Bf - sp.kron(S, eye, format="csr") @ Bf).tocsr()
+    states, chains = {}, []
+    for k in np.flatnonzero(~cmask):
+        D, E, Lk, Rk = state_operators(ops.row, ops.points[0], speed * material.relaxation_times[k], ops.cell)
+        S = S + g[k] * D
+        Ek = sp.kron(E, eye, format="csr")
+        states[k] = (D, E, Ek.shape[1])
+        chains.append((k, Ek, sp.kron(Lk, eye, format="csr"), sp.kron(Rk, eye, format="csr")))
+    Bv = (Bf - sp.kron(S, eye, format="csr") @ Bf).tocsr() if S.nnz else Bf
     Kv = (BtWd[free] @ Bv).tocsr()
     Gf = mb.G[free]
-    mono = np.flatnonzero(~cmask)
-    blocks = [[Kv, -Gf] + [-g[k] * BtWd[free] for k in mono], [-(T @ Bv), -c * M] + [g[k] * T for k in mono]]
-    for i, k in enumerate(mono):
-        Lk, Rk = memory_operators(ops.row, ops.points[0], speed * material.relaxation_times[k], ops.cell)
-        row = [-(sp.kron(Rk, eye) @ Bf), None] + [None] * mono.size
-        row[2 + i] = sp.kron(Lk, eye)
+    blocks = [
+        [Kv, -Gf] + [-g[k] * (BtWd[free] @ Ek) for k, Ek, _, _ in chains],
+        [-(T @ Bv), -c * M] + [g[k] * (T @ Ek) for k, Ek, _, _ in chains],
+    ]
+    for i, (_, _, Lk, Rk) in enumerate(chains):
+        row = [-(Rk @ Bf), None] + [None] * len(chains)
+        row[2 + i] = Lk
         blocks.append(row)
     A = sp.bmat(blocks, format="csc")
     t1 = time.perf_counter()
@@ -188,11 +228,12 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False):
         material,
         float(speed),
         free,
-        (free.size, M.shape[0], ncomp * ops.n_points),
+        (free.size, M.shape[0], sum(size for _, _, size in states.values())),
         fac,
         A.shape[0],
         matrix=A.tocsr(),
         condensed=cmask,
+        states=states,
         timings={"assemble": t1 - t0, "factor": t2 - t1},
     )
 

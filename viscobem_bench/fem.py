@@ -19,6 +19,14 @@ Cases (all SI; R = 10 mm):
   10 ms, nu = 0.5, R = 20 mm, P = 500 N/m) at Hunter's friction peak on the graded mesh, against
   Hunter's exact solution: friction (both forms), peak pressure and edges over the resolution,
   the grading ratio and the block size, with unknowns, CPU time and peak memory.
+- ``broad``: broad-spectrum rubbers with the default linear solver at four speeds (a decade
+  below the BEM's friction peak, the peak, a decade and two decades above), against the
+  isolated BEM on 2^13 points (its adaptive mesh where the uniform solve does not converge):
+  ``lognormal10`` (10 terms, E_inf/E0 = 500, log-normal weights of one decade's width over
+  tau = 10^-5.5..10^-0.5 s, E0 = 1.5 MPa, R = 15 mm, 1000 N/m), ``power12`` (12 terms,
+  E_inf/E0 = 1000, weights ``tau^-1/2`` over 1e-7..1 s, E0 = 2 MPa, R = 20 mm, 500 N/m) and
+  ``equal20`` (the 20-term rubber above); with unknowns, system and factor entries, condensed
+  terms, CPU time and peak resident memory (``--quick``: ``lognormal10`` at its peak).
 
 Each case runs in a fresh interpreter (:func:`viscobem_bench.instruments.run_in_fresh_process`)
 with BLAS/MKL threads pinned to 2, so its peak resident set size is its own.
@@ -317,6 +325,117 @@ def high_ratio_rows(quick=True, fresh=None):
     return rows
 
 
+def broad_material(name):
+    """``(material, R, P)`` of a ``broad`` rubber (see the module docstring)."""
+    from bem import Material
+
+    if name == "lognormal10":
+        t = np.logspace(-5.5, -0.5, 10)
+        w = np.exp(-0.5 * (np.log10(t) + 3.0) ** 2)
+        return Material.from_prony(E0=1.5e6, moduli=499 * 1.5e6 * w / w.sum(), times=t, nu=0.5), 0.015, 1000.0
+    if name == "power12":
+        t = np.logspace(-7, 0, 12)
+        w = t**-0.5
+        return Material.from_prony(E0=2e6, moduli=999 * 2e6 * w / w.sum(), times=t, nu=0.5), 0.02, 500.0
+    if name == "equal20":
+        return _rubber_material(20, 1000.0), 0.02, 1500.0
+    raise ValueError(f"unknown broad rubber {name!r}")
+
+
+def broad_bem(name, speed, n=2**13, fallback=True):
+    """Friction of the isolated BEM on ``n`` points (uniform; adaptive where that fails)."""
+    import bem
+    from bem.errors import ConvergenceError
+    from bem.surfaces import cylinder
+
+    m, R, P = broad_material(name)
+    a0 = np.sqrt(4 * P * R * (1 - m.nu**2) / (np.pi * m.E0))
+    surface = cylinder(radius=R, n=n, length=2.2 * a0)
+    try:
+        return bem.solve(surface, m, speed=speed, load=P, periodic=False, method="uniform").friction
+    except ConvergenceError:
+        if not fallback:
+            raise
+        return bem.solve(surface, m, speed=speed, load=P, periodic=False, method="adaptive").friction
+
+
+def broad_peak_speed(name):
+    """The BEM's friction peak (m/s) on 2^12 points: half-decade scan, then tenths of a decade."""
+    from bem.errors import ConvergenceError
+
+    def friction(lv):
+        try:
+            return broad_bem(name, 10**lv, n=2**12, fallback=False)
+        except ConvergenceError:
+            return -1.0
+
+    coarse = np.arange(-7.0, 1.01, 0.5)
+    best = coarse[int(np.argmax([friction(v) for v in coarse]))]
+    fine = np.linspace(best - 0.5, best + 0.5, 11)
+    return float(10 ** fine[int(np.argmax([friction(v) for v in fine]))])
+
+
+def broad_case(name, speed, decades):
+    """One default FEM run of a ``broad`` rubber against the BEM."""
+    from fem_reference import rolling_cylinder
+
+    m, R, P = broad_material(name)
+    ref = broad_bem(name, speed)
+    t0, c0 = time.perf_counter(), time.process_time()
+    r = rolling_cylinder(m, radius=R, load=P, speed=speed, mesh="graded")
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    return {
+        "rubber": name,
+        "decades_from_peak": decades,
+        "speed": speed,
+        "unknowns": r.n_unknowns,
+        "nonzeros": r.n_nonzeros,
+        "factor_nonzeros": r.factor_nonzeros,
+        "solver": r.solver,
+        "passes": r.passes,
+        "kept": len(r.terms["kept"]),
+        "condensed": sum(r.condensed),
+        "friction_bem": ref,
+        "friction_error": r.friction / ref - 1,
+        "dissipation_friction_error": r.friction_dissipation / ref - 1,
+        "success": r.success,
+        "cpu_s": cpu,
+        "wall_s": wall,
+        "peak_rss_mb": _peak_rss_mb(),
+    }
+
+
+BROAD_COLS = [
+    "rubber",
+    "decades_from_peak",
+    "speed",
+    "unknowns",
+    "nonzeros",
+    "factor_nonzeros",
+    "kept",
+    "condensed",
+    "friction_error",
+    "dissipation_friction_error",
+    "success",
+    "cpu_s",
+    "wall_s",
+    "peak_rss_mb",
+]
+
+
+def broad_rows(quick=True, fresh=None):
+    """The ``broad`` rows: each broad-spectrum rubber at four speeds around its friction peak."""
+    fresh = fresh or (lambda func, *args: func(*args))
+    rows = []
+    for name in ["lognormal10"] if quick else ["lognormal10", "power12", "equal20"]:
+        peak = broad_peak_speed(name)
+        for decades in [0] if quick else [-1, 0, 1, 2]:
+            rows.append(fresh(broad_case, name, peak * 10.0**decades, decades))
+    print("\nbroad-spectrum rubbers on the graded mesh vs the isolated BEM (default solver)")
+    print(table(rows, BROAD_COLS))
+    return rows
+
+
 def table(rows, cols):
     lines = ["  ".join(f"{c:>14s}" for c in cols)]
     for row in rows:
@@ -385,6 +504,7 @@ def run(quick: bool = True, out_dir=".") -> dict:
     )
     rubber = rubber_rows(quick, fresh)
     high = high_ratio_rows(quick, fresh)
+    broad = broad_rows(quick, fresh)
     result = {
         "quick": quick,
         "rolling": rolling,
@@ -392,6 +512,7 @@ def run(quick: bool = True, out_dir=".") -> dict:
         "indentation": ind,
         "rubber": rubber,
         "high_ratio": high,
+        "broad": broad,
     }
     write_record(out_dir, "fem_benchmark.json", result)
     return result

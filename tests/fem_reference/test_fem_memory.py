@@ -9,7 +9,14 @@ import numpy as np
 import pytest
 import scipy.sparse.linalg as spla
 
-from fem_reference.memory import condensed_memory, element_blocks, memory_operators, reference_element
+from fem_reference.memory import (
+    condensed_memory,
+    element_blocks,
+    memory_operators,
+    memory_reach,
+    reference_element,
+    state_operators,
+)
 from fem_reference.transport import integrate_line
 
 
@@ -75,9 +82,8 @@ def test_decay_between_elements_is_in_unit_interval():
     np.testing.assert_allclose(gamma[1:50], np.exp(-2 * zeta[1:50]), rtol=1e-6)
 
 
-@pytest.mark.parametrize("ell", [1e-6, 0.03, 1.0, 1e3])
-def test_condensed_matches_operators_on_graded_rows_in_any_order(ell):
-    rng = np.random.default_rng(3)
+def graded_rows(rng):
+    """Three rows of a graded element row (shrinking, then growing), points shuffled."""
     h = np.concatenate([0.2 * 1.5 ** -np.arange(8), 0.2 * 1.5 ** np.arange(8)])
     edges = np.concatenate([[4.0], 4.0 - np.cumsum(h)])
     g = np.sqrt(0.6)
@@ -87,7 +93,13 @@ def test_condensed_matches_operators_on_graded_rows_in_any_order(ell):
     keys = np.repeat([4, 1, 9], x1.size)
     cells = np.repeat(np.arange(3 * centres.size), 3)
     perm = rng.permutation(x.size)
-    keys, x, cells = keys[perm], x[perm], cells[perm]
+    return keys[perm], x[perm], cells[perm]
+
+
+@pytest.mark.parametrize("ell", [1e-6, 0.03, 1.0, 1e3])
+def test_condensed_matches_operators_on_graded_rows_in_any_order(ell):
+    rng = np.random.default_rng(3)
+    keys, x, cells = graded_rows(rng)
     eps = rng.normal(size=x.size)
     L, R = memory_operators(keys, x, ell, cells)
     exact = spla.spsolve(L.tocsc(), R @ eps)
@@ -100,11 +112,11 @@ def test_condensed_matches_operators_on_graded_rows_in_any_order(ell):
 
 
 @pytest.mark.parametrize("ell", [1e-4, 0.05, 30.0])
-def test_monolithic_and_condensed_solves_agree(ell):
-    # The viscous strains as unknowns (L alpha = R eps, unit block diagonal) and condensed give the
-    # same field; with the element matrices (D + zeta W + e e^T) themselves as L's diagonal blocks,
-    # SuperLU returned residuals of 1e3-2e9 on a rolling block (ratio 3, V lambda >= a0) and 1.6e3 here
-    # at ell = 30.
+def test_state_and_condensed_solves_agree(ell):
+    # The viscous strains carried by the elements' outflow values (L beta = R eps, unit diagonal)
+    # and condensed give the same field; with the element matrices (D + zeta W + e e^T) as the
+    # diagonal blocks of unknowns alpha, SuperLU returned residuals of 1e3-2e9 on a rolling block
+    # (ratio 3, V lambda >= a0) and 1.6e3 here at ell = 30.
     from bem import Material
     from fem_reference.kinematics import quadrature_operators
     from fem_reference.mesh import half_space_mesh
@@ -117,11 +129,45 @@ def test_monolithic_and_condensed_solves_agree(ell):
     top = top_surface(ops.basis)
     f = np.zeros(ops.basis.N)
     f[top.ydofs[np.abs(top.x) <= 0.1]] = -1.0
-    sols = []
+    sols, strains = [], []
     for condense in (False, True):
         # SuperLU: PARDISO's pivot perturbation is not reliable on these systems (rolling falls back)
         op = steady_operator(ops, m, ell, condense=condense, solver="splu")  # V = ell with tau = 1 s
-        u, _, _ = op.solve(f)
-        assert op.residual < 1e-9
+        u, _, alpha = op.solve(f)
+        assert op.residual < 1e-9 and op.condensed[0] == condense
         sols.append(u)
+        strains.append(alpha[0])
     np.testing.assert_allclose(sols[0], sols[1], rtol=0, atol=1e-9 * np.max(np.abs(sols[1])))
+    np.testing.assert_allclose(strains[0], strains[1], rtol=0, atol=1e-8 * np.max(np.abs(strains[1])))
+
+
+@pytest.mark.parametrize("ell", [0.0, 1e-6, 0.03, 1.0, 1e3, np.inf])
+def test_state_form_is_exact_and_local(ell):
+    # alpha = D eps + E beta, L beta = R eps against the point-wise update; each point couples to
+    # its own element's 3 points of its row and one outflow value, whatever ell
+    rng = np.random.default_rng(5)
+    keys, x, cells = graded_rows(rng)
+    eps = rng.normal(size=x.size)
+    L, R = memory_operators(keys, x, ell, cells)
+    exact = spla.spsolve(L.tocsc(), R @ eps)
+    D, E, Lb, Rb = state_operators(keys, x, ell, cells)
+    beta = spla.spsolve(Lb.tocsc(), Rb @ eps)
+    np.testing.assert_allclose(D @ eps + E @ beta, exact, rtol=0, atol=1e-12 * np.max(np.abs(exact)))
+    assert Lb.shape[0] == x.size // 3
+    assert np.diff(D.indptr).max() <= 3 and np.diff(E.indptr).max() <= 1 and np.diff(Lb.indptr).max() <= 2
+
+
+def test_memory_reach_counts_the_truncated_band():
+    # the mean number of upstream elements f < e of the same row with prod_{g=f+1}^{e-1} gamma_g
+    # >= tol, counted element by element on one graded row
+    _, _, _, _, r = reference_element()
+    rng = np.random.default_rng(7)
+    keys, x, cells = graded_rows(rng)
+    sel = keys == 4
+    order = np.argsort(-x[sel])
+    xs = x[sel][order]
+    h = (xs[0::3] - xs[2::3]) / np.sqrt(0.6)
+    for ell, tol in ((1e-6, 1e-13), (0.03, 1e-13), (0.03, 1e-3), (1e3, 1e-13)):
+        gamma = element_blocks(h / (2 * ell))[2] @ r
+        count = sum(1 for e in range(h.size) for f in range(e) if np.prod(gamma[f + 1 : e]) >= tol)
+        assert memory_reach(keys[sel], x[sel], ell, cells[sel], tol) == pytest.approx(count / h.size, abs=1e-12)
