@@ -43,11 +43,9 @@ class _SuperLU:
 
 class _Pardiso:
     """MKL PARDISO (METIS ordering, weighted matching and scaling). The saddle-point
-    blocks (zero pressure block for ``nu = 0.5``) make it perturb a few pivots. Its own
-    iterative refinement is off: each of its steps is a full solve, and it takes up to its
-    limit whether or not the residual needs it; :func:`solve_refined` refines against the
-    measured residual instead (on a 12-term rubber's system, 16 right-hand sides: 2.4 s to a
-    residual of 6e-9, against 8.9 s with 20 internal steps)."""
+    blocks (zero pressure block for ``nu = 0.5``) make it perturb a few pivots, so up to
+    20 steps of its iterative refinement are enabled; the residual then matches
+    SuperLU's (measured 1e-7 relative, max norm, for random right-hand sides on both)."""
 
     name = "pardiso"
 
@@ -56,8 +54,8 @@ class _Pardiso:
 
         self._solver = pypardiso.PyPardisoSolver()
         self._solver.set_matrix_type(11)  # real non-symmetric
-        for key, value in {1: 1, 2: 2, 8: 0, 10: 8, 11: 1, 13: 1, 18: -1}.items():
-            self._solver.set_iparm(key, value)  # 1-based iparm: METIS, no refinement, matching, report fill
+        for key, value in {1: 1, 2: 2, 8: 20, 10: 8, 11: 1, 13: 1, 18: -1}.items():
+            self._solver.set_iparm(key, value)  # 1-based iparm: METIS, refinement, matching, report fill
         self._solver.set_statistical_info_off()
         self._A = sp.csr_matrix(A)
         self._A.sort_indices()
