@@ -96,13 +96,18 @@ def graded_rows(rng):
     return keys[perm], x[perm], cells[perm]
 
 
-@pytest.mark.parametrize("ell", [1e-6, 0.03, 1.0, 1e3])
-def test_condensed_matches_operators_on_graded_rows_in_any_order(ell):
-    rng = np.random.default_rng(3)
+def graded_memory(seed, ell):
+    """Graded rows, a random strain and its viscous strain from :func:`memory_operators`."""
+    rng = np.random.default_rng(seed)
     keys, x, cells = graded_rows(rng)
     eps = rng.normal(size=x.size)
     L, R = memory_operators(keys, x, ell, cells)
-    exact = spla.spsolve(L.tocsc(), R @ eps)
+    return keys, x, cells, eps, spla.spsolve(L.tocsc(), R @ eps)
+
+
+@pytest.mark.parametrize("ell", [1e-6, 0.03, 1.0, 1e3])
+def test_condensed_matches_operators_on_graded_rows_in_any_order(ell):
+    keys, x, cells, eps, exact = graded_memory(3, ell)
     S = condensed_memory(keys, x, [ell], [2.0], cells)
     assert np.max(np.abs(S @ eps - 2.0 * exact)) < 1e-12
     for k in (1, 4, 9):  # rows are independent
@@ -145,11 +150,7 @@ def test_state_and_condensed_solves_agree(ell):
 def test_state_form_is_exact_and_local(ell):
     # alpha = D eps + E beta, L beta = R eps against the point-wise update; each point couples to
     # its own element's 3 points of its row and one outflow value, whatever ell
-    rng = np.random.default_rng(5)
-    keys, x, cells = graded_rows(rng)
-    eps = rng.normal(size=x.size)
-    L, R = memory_operators(keys, x, ell, cells)
-    exact = spla.spsolve(L.tocsc(), R @ eps)
+    keys, x, cells, eps, exact = graded_memory(5, ell)
     D, E, Lb, Rb = state_operators(keys, x, ell, cells)
     beta = spla.spsolve(Lb.tocsc(), Rb @ eps)
     np.testing.assert_allclose(D @ eps + E @ beta, exact, rtol=0, atol=1e-12 * np.max(np.abs(exact)))
