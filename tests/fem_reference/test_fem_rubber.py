@@ -207,8 +207,8 @@ def test_broad_spectrum_rubber_at_friction_peak():
     # peak (V = 9.79e-4 m/s), default solver. Measured against the BEM on 2^13 points: friction
     # -0.117 % (moment form) and +0.217 % (dissipation form); tolerance 1 % (the FEM's target,
     # margins 8.5x and 4.6x). 18,018 unknowns, 7.1M entries, 24M factor entries, 64 s CPU and
-    # 2.7 GiB peak resident memory in a fresh process (the rubber ran out of memory at
-    # 16 GiB before); the memory is that of the whole test process, so below 8 GiB.
+    # 2.7 GiB peak resident memory in a fresh process (memory that grew with the spectrum ran out
+    # at 16 GiB here); the memory is that of the whole test process, so below 8 GiB.
     from viscobem_bench.fem import broad_bem, broad_material
 
     m, R2, P2 = broad_material("lognormal10")

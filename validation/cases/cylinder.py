@@ -211,6 +211,15 @@ def run_sls(ratio, *, quick, vtk_dir, root, tamper):
                 tol["friction"],
                 why["friction"],
             )
+            if "friction_moment" in sol:  # the FEM's other form: the moment of its nodal contact forces
+                out.check(
+                    "friction_moment_rel_error",
+                    name,
+                    label,
+                    metrics.rel_diff(sol["friction_moment"], ex.friction),
+                    tol.get("friction_moment"),
+                    why.get("friction_moment", "not judged: not measured at these settings"),
+                )
             out.check(
                 "peak_pressure_rel_error",
                 name,

@@ -82,6 +82,15 @@ def compare(out, tol, why, name, b, ref, label, solver=None):
         tol["friction"],
         why["friction"],
     )
+    if "friction_moment" in b:  # the FEM's other form: the moment of its nodal contact forces
+        out.check(
+            "friction_moment_rel_diff",
+            pair,
+            label,
+            metrics.rel_diff(b["friction_moment"], ref["friction"]),
+            tol.get("friction_moment"),
+            why.get("friction_moment", "not judged: not measured at these settings"),
+        )
     for side in ("leading", "trailing"):
         out.check(
             f"{side}_edge_diff_elements",
