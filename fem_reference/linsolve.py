@@ -65,6 +65,18 @@ class _Pardiso:
     def solve(self, b):
         return self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
 
+    def __del__(self):
+        # MKL keeps the factor in its own memory until told to release it: without this every
+        # factorisation stays resident after its operator is gone (measured: a validation run's
+        # resident memory climbing past 13 GiB over its graded mesh passes)
+        solver = getattr(self, "_solver", None)
+        if solver is not None:
+            try:
+                solver.free_memory(everything=True)
+                solver.libmkl.mkl_free_buffers()  # and MKL's allocator hands the memory back
+            except Exception:  # interpreter shutdown: the library may already be unloaded
+                pass
+
 
 def pardiso_available():
     """True if the optional PARDISO solver (``pypardiso``, the ``fem`` extra) is importable."""

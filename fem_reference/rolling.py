@@ -42,6 +42,25 @@ class _BandEdge(Exception):
     """The contact reached an end of the candidate band."""
 
 
+# Entries of the work arrays of one flexibility call (unknowns times candidate nodes solved
+# together): solving every candidate at once held arrays of the system's size per candidate,
+# and the viscous strains of every term for each of them.
+FLEXIBILITY_ENTRIES = 5e7
+
+
+def _flexibility(op, top_dofs, ydofs):
+    """Depression of every top node (rows) per unit downward force on each candidate (columns)."""
+    w = np.empty((top_dofs.size, ydofs.size))
+    chunk = max(1, int(FLEXIBILITY_ENTRIES // op.n_unknowns))
+    for lo in range(0, ydofs.size, chunk):
+        cols = np.arange(lo, min(lo + chunk, ydofs.size))
+        F = np.zeros((op.ops.basis.N, cols.size))
+        F[ydofs[cols], np.arange(cols.size)] = -1.0  # unit downward force on the body
+        u, _, _ = op.solve(F, strains=False)
+        w[:, cols] = -u[top_dofs]
+    return w
+
+
 def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, active_width):
     """Factor, condense onto the candidate nodes, solve the contact and the fields."""
     t0 = time.perf_counter()
@@ -53,11 +72,7 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     top = top_surface(ops.basis)
     cand = (top.x >= band[0] - 1e-12 * abs(band[0])) & (top.x <= band[1] + 1e-12 * abs(band[1]))
     ydofs = top.ydofs[cand]
-    F = np.zeros((ops.basis.N, ydofs.size))
-    F[ydofs, np.arange(ydofs.size)] = -1.0  # unit downward force on the body
-    u_unit, _, _ = op.solve(F)  # one call, every candidate node a right-hand side
-    w_top = -u_unit[top.ydofs]  # depression at every top node per unit force
-    del u_unit
+    w_top = _flexibility(op, top.ydofs, ydofs)
     t2 = time.perf_counter()
 
     xc = top.x[cand]
@@ -72,7 +87,9 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
         raise _BandEdge()
     t3 = time.perf_counter()
 
-    u, p, alpha = op.solve(F @ sol.lam)
+    f = np.zeros(ops.basis.N)
+    f[ydofs] = -sol.lam  # the contact forces on the body
+    u, p, alpha = op.solve(f)
     # the contact condition as the field solve satisfies it: gaps from the displaced surface
     gap_field = -u[ydofs] + xc**2 / (2 * R) - sol.d
     residual = complementarity_residual(sol.lam, gap_field, sol.active, P, gap_scale(sol.d, hc[sol.active]))

@@ -72,8 +72,10 @@ class SteadyOperator:
     residual_limit: float = RESIDUAL_LIMIT
     timings: dict = None
 
-    def solve(self, forces):
+    def solve(self, forces, strains=True):
         """Solve for nodal ``forces`` of shape ``(N_u,)`` or ``(N_u, m)`` (N/m).
+
+        ``strains=False`` leaves ``alpha`` empty (it holds a field per term and right-hand side).
 
         Returns
         -------
@@ -98,6 +100,8 @@ class SteadyOperator:
         p = self.ops.N_p @ x[off : off + npr] * E
         off += npr
         alpha = []
+        if not strains:
+            return u, p, alpha
         eps = None
         for k, tau in enumerate(self.material.relaxation_times):
             if self.condensed[k]:
