@@ -67,8 +67,7 @@ class _Pardiso:
 
     def __del__(self):
         # MKL keeps the factor in its own memory until told to release it: without this every
-        # factorisation stays resident after its operator is gone (measured: a validation run's
-        # resident memory climbing past 13 GiB over its graded mesh passes)
+        # factorisation of a run would stay resident after its operator is gone
         solver = getattr(self, "_solver", None)
         if solver is not None:
             try:

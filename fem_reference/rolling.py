@@ -43,7 +43,8 @@ class _BandEdge(Exception):
 
 
 # Entries of the work arrays of one flexibility call (unknowns times candidate nodes solved
-# together): solving every candidate at once held arrays of the system's size per candidate.
+# together): each candidate costs arrays of the system's size, so they are solved in blocks,
+# and only the displacements are kept.
 FLEXIBILITY_ENTRIES = 5e7
 
 

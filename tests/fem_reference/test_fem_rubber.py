@@ -221,3 +221,23 @@ def test_broad_spectrum_rubber_at_friction_peak():
     assert r.friction == pytest.approx(ref, rel=0.01)
     assert r.friction_dissipation == pytest.approx(ref, rel=0.01)
     assert r.peak_memory < 8 * 1024
+
+
+def test_pardiso_factor_released_with_its_operator(monkeypatch):
+    # MKL holds a PARDISO factor until told to free it: without the release every factorisation
+    # of a run stayed resident (six 90k-unknown factors: 0.19 -> 0.57 GiB, flat at 0.12 GiB with it)
+    pypardiso = pytest.importorskip("pypardiso")
+    freed = []
+    original = pypardiso.PyPardisoSolver.free_memory
+
+    def spy(self, everything=False):
+        freed.append(everything)
+        return original(self, everything=everything)
+
+    monkeypatch.setattr(pypardiso.PyPardisoSolver, "free_memory", spy)
+    A = sp.random(200, 200, density=0.02, random_state=3) + sp.identity(200) * 5
+    fac = factorize(A, "pardiso")
+    fac.solve(np.ones(200))
+    assert freed == []
+    del fac
+    assert freed == [True]
