@@ -23,6 +23,13 @@ FLOOR_FACTOR = 10.0  # a solve may sit this far above the round-off floor of its
 # step while it works, and at the floor set by the conditioning it only fluctuates (each step costs a
 # solve with every right-hand side: the flexibility's hundreds of columns)
 STALL = 0.5
+# deflation of PARDISO's solve (_Pardiso.deflate): directions where the factor's inverse departs
+# from A's by more than DEFLATE_TOL are solved exactly, the rest left to iterative refinement (which
+# then contracts by DEFLATE_TOL per step); at most DEFLATE_MAX random probes find them
+DEFLATE_TOL = 1e-3
+DEFLATE_MAX = 512
+# a first solve this far off (relative residual) is deflated at once, before any refinement
+DEFLATE_TRIGGER = 100 * 1e-8
 
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
@@ -45,7 +52,9 @@ class _Pardiso:
     """MKL PARDISO (METIS ordering, weighted matching and scaling). The saddle-point
     blocks (zero pressure block for ``nu = 0.5``) make it perturb a few pivots, so up to
     20 steps of its iterative refinement are enabled; the residual then matches
-    SuperLU's (measured 1e-7 relative, max norm, for random right-hand sides on both)."""
+    SuperLU's (measured 1e-7 relative, max norm, for random right-hand sides on both). Where
+    that is not enough (broad-spectrum rubbers at high speed, some standard solids), the solve
+    is deflated (:meth:`deflate`)."""
 
     name = "pardiso"
 
@@ -61,9 +70,64 @@ class _Pardiso:
         self._A.sort_indices()
         self._solver.factorize(self._A)
         self.nnz = int(self._solver.get_iparm(18))  # entries of the factors, as PARDISO reports them
+        self._Q = self._Qw = self._Rw = None
+        self.deflated = 0
+        self.extended = None  # A in extended precision, for refinement of the deflated solve
+
+    def _plain(self, b):
+        return self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
 
     def solve(self, b):
-        return self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
+        if self._Q is None:
+            return self._plain(b)
+        # M^-1 A = I - P: x = y + Q z with y = M^-1 b and (M^-1 A Q) z = y - M^-1 A y, solved in
+        # the least-squares sense through the QR factors of M^-1 A Q
+        y = self._plain(b)
+        y2 = y.reshape(y.shape[0], -1)
+        t = self._plain(self._A @ y2).reshape(y2.shape)
+        z = np.linalg.solve(self._Rw, self._Qw.T @ (y2 - t))
+        return (y2 + self._Q @ z).reshape(y.shape)
+
+    def deflate(self, seed=0):
+        """Make the solve exact on the directions where the factor is far from ``A``.
+
+        Static pivoting (perturbed pivots, and the growth it lets through) leaves ``M^-1 A = I -
+        P`` with ``P`` of fast-decaying singular values: iterative refinement contracts by the
+        largest, and stalls or diverges once that is near or above 1. A randomized range finder
+        (``k`` Gaussian probes ``X``, ``P X = X - M^-1 A X``) finds the directions where ``P``
+        exceeds :data:`DEFLATE_TOL`; ``k`` doubles until the smallest found is below it (at
+        most :data:`DEFLATE_MAX` probes). Every later solve is exact on them (two solves with
+        the factor and a product with ``A``) and refinement contracts by ``DEFLATE_TOL`` per
+        step. PARDISO's own refinement is switched off, so that ``M^-1`` is a fixed linear
+        operator. Returns False if this factor was deflated already.
+        """
+        if self._Q is not None:
+            return False
+        self._solver.set_iparm(8, 0)
+        n = self._A.shape[0]
+        rng = np.random.default_rng(seed)
+        k = min(max(2 * int(self._solver.get_iparm(14)) + 16, 32), DEFLATE_MAX, n)
+        while True:
+            X = rng.standard_normal((n, k))
+            U, sig, _ = np.linalg.svd(X - self._plain(self._A @ X), full_matrices=False)
+            est = sig / np.sqrt(k)  # singular values of P: a Gaussian probe has sqrt(k) of each
+            if est[-1] < DEFLATE_TOL or k >= min(DEFLATE_MAX, n):
+                break
+            k = min(2 * k, DEFLATE_MAX, n)
+        keep = est > DEFLATE_TOL
+        self._Q = np.ascontiguousarray(U[:, keep])
+        self._Qw, self._Rw = np.linalg.qr(self._plain(self._A @ self._Q))
+        self.deflated = int(keep.sum())
+        if np.finfo(np.longdouble).eps < np.finfo(float).eps:  # x86: 64-bit mantissa
+            self.extended = self._A.astype(np.longdouble)
+        log.debug(
+            "PARDISO: %d perturbed pivots; solve deflated on %d of %d probed directions (next %.1e)",
+            int(self._solver.get_iparm(14)),
+            self.deflated,
+            k,
+            est[-1],
+        )
+        return True
 
     def __del__(self):
         # MKL keeps the factor in its own memory until told to release it: without this every
@@ -168,24 +232,62 @@ def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
     Refinement stops once the relative residual (:func:`relative_residual`, with
     ``n_equilibrium`` force-balance rows) is below ``target``, or once a step fails to halve it
     (:data:`STALL`: near the floor set by the conditioning it only fluctuates); the best iterate
-    is kept. Returns ``(x, residual, limit)``:
+    is kept. A factor that can be deflated (PARDISO: :meth:`_Pardiso.deflate`) is deflated when
+    its first solve is off by more than :data:`DEFLATE_TRIGGER`, or when refinement ends above
+    the limit; refinement then runs in extended precision. Returns ``(x, residual, limit)``:
     the residual of the returned ``x`` and the largest acceptable one (:func:`residual_limit`;
     :data:`RESIDUAL_LIMIT` without ``n_equilibrium``).
     """
     x = factor.solve(b)
+    deflate = getattr(factor, "deflate", None)
+    if deflate is not None and relative_residual(A, x, b, n_equilibrium) > DEFLATE_TRIGGER and deflate():
+        # the factor's own refinement left the solve far off: refinement from there would cost
+        # many solves, each with PARDISO's refinement steps, and may not converge at all
+        x = factor.solve(b)
+    best, best_res = _refine(A, factor, b, x, n_equilibrium, target, steps, getattr(factor, "extended", None))
+    limit = _limit(A, best, b, best_res, n_equilibrium)
+    if best_res > limit and deflate is not None and deflate():
+        # refinement stalled or diverged: the factor is far from A on a few directions; solve
+        # those exactly and start again (the first deflated solve can be the worse one)
+        x, res = _refine(A, factor, b, factor.solve(b), n_equilibrium, target, steps, getattr(factor, "extended", None))
+        if res < best_res:
+            best, best_res = x, res
+            limit = _limit(A, best, b, best_res, n_equilibrium)
+    return best, best_res, limit
+
+
+def _limit(A, x, b, res, n_equilibrium):
+    if n_equilibrium is not None and res > RESIDUAL_LIMIT:  # only then can the floor matter
+        return residual_limit(A, x, b, n_equilibrium)
+    return RESIDUAL_LIMIT
+
+
+def _refine(A, factor, b, x, n_equilibrium, target, steps, extended=None):
+    """Iterative refinement from ``x``: the best iterate and its residual.
+
+    With ``extended`` (``A`` in extended precision) the iterate and its residual are kept in that
+    precision: the balance's terms exceed the load by up to ~1e8, so a residual rounded to double
+    is off by about the floor of :func:`residual_limit`, and a solve that is not backward stable
+    to that level (the deflated one) stalls above it; in extended precision it reaches it.
+    """
     res = relative_residual(A, x, b, n_equilibrium)
     best, best_res = x, res
+    xe = be = None
+    if extended is not None:
+        xe, be = x.astype(extended.dtype), b.astype(extended.dtype)
     for _ in range(steps):
         if best_res <= target:
             break
-        x = x + factor.solve(b - (A @ x).reshape(b.shape))
+        if extended is None:
+            x = x + factor.solve(b - (A @ x).reshape(b.shape))
+        else:
+            r = (be - (extended @ xe).reshape(b.shape)).astype(float)
+            xe = xe + factor.solve(r).astype(extended.dtype)
+            x = xe.astype(float)
         res = relative_residual(A, x, b, n_equilibrium)
         stalled = res > STALL * best_res  # at the round-off floor: more steps only fluctuate
         if res < best_res:
             best, best_res = x, res
         if stalled:
             break
-    limit = RESIDUAL_LIMIT
-    if n_equilibrium is not None and best_res > RESIDUAL_LIMIT:  # only then can the floor matter
-        limit = residual_limit(A, best, b, n_equilibrium)
-    return best, best_res, limit
+    return best, best_res

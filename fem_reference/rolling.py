@@ -73,11 +73,10 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     ydofs = top.ydofs[cand]
     w_top = _flexibility(op, top.ydofs, ydofs)
     if solver == "auto" and op.factor.name != "splu" and not op.residual <= op.residual_limit:
-        # PARDISO perturbs small pivots of the saddle-point system; where that leaves its solve
-        # off (measured: residual 1.7e5 on a modulus-ratio-1000 solid at s = 0.3, 0.25 on a
-        # 10-term rubber a decade above its friction peak), factor again with SuperLU's partial
+        # PARDISO perturbs small pivots of the saddle-point system; where even its deflated solve
+        # (linsolve._Pardiso.deflate) misses the residual, factor again with SuperLU's partial
         # pivoting, every term carried by its outflow values: SuperLU fills the condensed bands
-        # (12 GiB on that rubber) but not the carried form's local couplings
+        # of broad spectra (12 GiB on a 10-term rubber) but not the carried form's local couplings
         log.warning(
             "%s solve residual %.2e > %.1e: factoring with SuperLU", op.factor.name, op.residual, op.residual_limit
         )
