@@ -114,7 +114,9 @@ def test_residual_limit_follows_the_round_off_floor_of_cancelling_terms():
 
 def test_rolling_reports_linear_residual_and_success():
     m = rubber(3, 30, nu=0.5)
-    r = rolling_cylinder(m, radius=R, load=P, speed=1e-3, mesh="graded", resolution=3, solver="splu")
+    # a slow roll on a coarse mesh: short memory reaches, so a cheap factorisation (the residual's
+    # bookkeeping does not depend on either)
+    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, mesh="graded", resolution=2, solver="splu")
     assert r.success and r.message == "converged"
     assert 0 < r.linear_residual <= r.linear_residual_limit == 1e-8 and r.solver == "splu"
     assert len(r.condensed) == len(r.terms["kept"]) and r.passes >= 1
@@ -160,7 +162,7 @@ def test_bad_linear_solve_fails(monkeypatch):
 
     monkeypatch.setattr(linsolve, "_SuperLU", Wrong)
     m = rubber(3, 30)
-    r = rolling_cylinder(m, radius=R, load=P, speed=1e-3, mesh="graded", resolution=3, solver="splu")
+    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, mesh="graded", resolution=2, solver="splu")
     assert not r.success and "linear solve residual" in r.message and r.linear_residual > 1e-8
 
 
