@@ -239,12 +239,14 @@ def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
     :data:`RESIDUAL_LIMIT` without ``n_equilibrium``).
     """
     x = factor.solve(b)
+    res = relative_residual(A, x, b, n_equilibrium)
     deflate = getattr(factor, "deflate", None)
-    if deflate is not None and relative_residual(A, x, b, n_equilibrium) > DEFLATE_TRIGGER and deflate():
+    if deflate is not None and res > DEFLATE_TRIGGER and deflate():
         # the factor's own refinement left the solve far off: refinement from there would cost
         # many solves, each with PARDISO's refinement steps, and may not converge at all
         x = factor.solve(b)
-    best, best_res = _refine(A, factor, b, x, n_equilibrium, target, steps, getattr(factor, "extended", None))
+        res = None
+    best, best_res = _refine(A, factor, b, x, n_equilibrium, target, steps, getattr(factor, "extended", None), res)
     limit = _limit(A, best, b, best_res, n_equilibrium)
     if best_res > limit and deflate is not None and deflate():
         # refinement stalled or diverged: the factor is far from A on a few directions; solve
@@ -262,15 +264,17 @@ def _limit(A, x, b, res, n_equilibrium):
     return RESIDUAL_LIMIT
 
 
-def _refine(A, factor, b, x, n_equilibrium, target, steps, extended=None):
-    """Iterative refinement from ``x``: the best iterate and its residual.
+def _refine(A, factor, b, x, n_equilibrium, target, steps, extended=None, res=None):
+    """Iterative refinement from ``x`` (whose residual is ``res``, if known): the best iterate
+    and its residual.
 
     With ``extended`` (``A`` in extended precision) the iterate and its residual are kept in that
     precision: the balance's terms exceed the load by up to ~1e8, so a residual rounded to double
     is off by about the floor of :func:`residual_limit`, and a solve that is not backward stable
     to that level (the deflated one) stalls above it; in extended precision it reaches it.
     """
-    res = relative_residual(A, x, b, n_equilibrium)
+    if res is None:
+        res = relative_residual(A, x, b, n_equilibrium)
     best, best_res = x, res
     xe = be = None
     if extended is not None:
