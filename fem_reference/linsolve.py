@@ -18,6 +18,10 @@ from bem.errors import InputError
 __all__ = ["factorize", "SOLVERS", "relative_residual", "residual_limit", "solve_refined", "RESIDUAL_LIMIT"]
 
 RESIDUAL_LIMIT = 1e-8  # largest accepted relative residual of a linear solve (see residual_limit)
+# refinement stops at this residual: a hundredth of the limit, so that the force error of an
+# accepted solve is far below the discretisation's (>= 1e-5) and round-off in the products cannot
+# push it over the limit; going lower costs a solve with every right-hand side and moves nothing
+TARGET = RESIDUAL_LIMIT / 100
 FLOOR_FACTOR = 10.0  # a solve may sit this far above the round-off floor of its force balance
 # iterative refinement stops once a step fails to halve the residual: it contracts by cond * eps per
 # step while it works, and at the floor set by the conditioning it only fluctuates (each step costs a
@@ -30,6 +34,12 @@ DEFLATE_TOL = 1e-3
 DEFLATE_MAX = 512
 # a first solve this far off (relative residual) is deflated at once, before any refinement
 DEFLATE_TRIGGER = 100 * 1e-8
+# a solve with more right-hand sides than PROBE_COLUMNS is preceded by a probe, its first column
+# alone: if PARDISO's own refinement took more than DEFLATE_STEPS steps there, the factor is deflated
+# before the rest are solved. Each of those steps costs a solve for every column (the flexibility's
+# tens to hundreds), while a deflated solve costs two and converges by DEFLATE_TOL per step
+DEFLATE_STEPS = 8
+PROBE_COLUMNS = 4
 
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
@@ -72,10 +82,21 @@ class _Pardiso:
         self.nnz = int(self._solver.get_iparm(18))  # entries of the factors, as PARDISO reports them
         self._Q = self._Qw = self._Rw = None
         self.deflated = 0
+        self.refinement_steps = 0  # PARDISO's own, in the last solve
         self.extended = None  # A in extended precision, for refinement of the deflated solve
 
     def _plain(self, b):
-        return self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
+        x = self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
+        self.refinement_steps = int(self._solver.get_iparm(7))
+        return x
+
+    def slow_to_refine(self, b):
+        """True if PARDISO's own refinement of the solve with ``b`` (one column) took more than
+        :data:`DEFLATE_STEPS` steps; always False once deflated (its refinement is then off)."""
+        if self._Q is not None:
+            return False
+        self._plain(b)
+        return self.refinement_steps > DEFLATE_STEPS
 
     def solve(self, b):
         if self._Q is None:
@@ -226,32 +247,46 @@ def _worst_ratio(num, den):
     return float(np.max(num[ok] / den[ok])) if np.any(ok) else float(np.max(num, initial=0.0))
 
 
-def solve_refined(A, factor, b, *, n_equilibrium=None, target=1e-12, steps=8):
+def solve_refined(A, factor, b, *, n_equilibrium=None, target=TARGET, steps=8):
     """``x`` with ``factor.solve`` plus up to ``steps`` of iterative refinement.
 
     Refinement stops once the relative residual (:func:`relative_residual`, with
     ``n_equilibrium`` force-balance rows) is below ``target``, or once a step fails to halve it
     (:data:`STALL`: near the floor set by the conditioning it only fluctuates); the best iterate
     is kept. A factor that can be deflated (PARDISO: :meth:`_Pardiso.deflate`) is deflated when
-    its first solve is off by more than :data:`DEFLATE_TRIGGER`, or when refinement ends above
-    the limit; refinement then runs in extended precision. Returns ``(x, residual, limit)``:
-    the residual of the returned ``x`` and the largest acceptable one (:func:`residual_limit`;
-    :data:`RESIDUAL_LIMIT` without ``n_equilibrium``).
+    its own refinement is slow on a probe column (:data:`DEFLATE_STEPS`), when its first solve is
+    off by more than :data:`DEFLATE_TRIGGER`, or when refinement ends above the limit. Returns
+    ``(x, residual, limit)``: the residual of the returned ``x`` and the largest acceptable one
+    (:func:`residual_limit`; :data:`RESIDUAL_LIMIT` without ``n_equilibrium``).
     """
+    deflate = getattr(factor, "deflate", None)
+    if deflate is not None and b.ndim == 2 and b.shape[1] > PROBE_COLUMNS and factor.slow_to_refine(b[:, 0]):
+        deflate()
     x = factor.solve(b)
     res = relative_residual(A, x, b, n_equilibrium)
-    deflate = getattr(factor, "deflate", None)
     if deflate is not None and res > DEFLATE_TRIGGER and deflate():
         # the factor's own refinement left the solve far off: refinement from there would cost
         # many solves, each with PARDISO's refinement steps, and may not converge at all
-        x = factor.solve(b)
-        res = None
-    best, best_res = _refine(A, factor, b, x, n_equilibrium, target, steps, getattr(factor, "extended", None), res)
-    limit = _limit(A, best, b, best_res, n_equilibrium)
+        x, res = factor.solve(b), None
+    best, best_res, limit = _refine_to_limit(A, factor, b, x, n_equilibrium, target, steps, res)
     if best_res > limit and deflate is not None and deflate():
         # refinement stalled or diverged: the factor is far from A on a few directions; solve
         # those exactly and start again (the first deflated solve can be the worse one)
-        x, res = _refine(A, factor, b, factor.solve(b), n_equilibrium, target, steps, getattr(factor, "extended", None))
+        x, res, lim = _refine_to_limit(A, factor, b, factor.solve(b), n_equilibrium, target, steps)
+        if res < best_res:
+            best, best_res, limit = x, res, lim
+    return best, best_res, limit
+
+
+def _refine_to_limit(A, factor, b, x, n_equilibrium, target, steps, res=None):
+    """:func:`_refine` in double precision, continued in extended precision where that ends above
+    the limit and the factor keeps ``A`` in it (a deflated PARDISO factor): ``(x, residual, limit)``.
+    The extended products cost several times the double ones, so they are spent only where needed."""
+    best, best_res = _refine(A, factor, b, x, n_equilibrium, target, steps, None, res)
+    limit = _limit(A, best, b, best_res, n_equilibrium)
+    extended = getattr(factor, "extended", None)
+    if best_res > limit and extended is not None:
+        x, res = _refine(A, factor, b, best, n_equilibrium, target, steps, extended, best_res)
         if res < best_res:
             best, best_res = x, res
             limit = _limit(A, best, b, best_res, n_equilibrium)

@@ -266,3 +266,46 @@ def test_pardiso_solve_deflated_where_refinement_stalls():
     assert runs["pardiso"].linear_residual <= 1e-8
     assert runs["pardiso"].friction == pytest.approx(runs["splu"].friction, rel=1e-9)
     assert runs["pardiso"].friction_dissipation == pytest.approx(runs["splu"].friction_dissipation, rel=1e-9)
+
+
+@pytest.mark.pardiso
+def test_pardiso_deflates_before_a_many_column_solve_where_its_refinement_is_slow(monkeypatch):
+    import ctypes
+
+    # E_inf/E0 = 3 standard solid at s = 100, resolution 2 (15,147 unknowns), PARDISO on one thread
+    # (its pivots, and so its refinement, depend on the thread count): it perturbs 3 pivots and its
+    # own refinement takes its maximum of 20 steps per solve (measured), each a solve of every column
+    # of the flexibility. Probed on one column, the factor is deflated first: no solve of several
+    # columns may then pay for more than DEFLATE_STEPS of PARDISO's refinement (measured: 54 s ->
+    # 22 s), and the friction equals SuperLU's (measured to 3e-13; tolerance 1e-9, the residual's
+    # limit 1e-8 bounding the force error)
+    from fem_reference import linsolve
+    from validation.cases.cylinder import P as P3
+    from validation.cases.cylinder import R as R3
+    from validation.cases.cylinder import sls
+    from validation.cases.solvers import hertz_line_half_width
+
+    pypardiso = pytest.importorskip("pypardiso")
+    m = sls(3)
+    V = 100.0 * hertz_line_half_width(m.E0, m.nu, R3, P3) / float(m.creep_times.max())
+    plain, costly = linsolve._Pardiso._plain, []
+
+    def spy(self, b):
+        x = plain(self, b)
+        if np.ndim(b) == 2 and b.shape[1] > linsolve.PROBE_COLUMNS:
+            costly.append(self.refinement_steps)
+        return x
+
+    monkeypatch.setattr(linsolve._Pardiso, "_plain", spy)
+    mkl = pypardiso.PyPardisoSolver().libmkl
+    threads = mkl.mkl_get_max_threads()
+    mkl.MKL_Set_Num_Threads(ctypes.c_int(1))
+    try:
+        r = rolling_cylinder(m, radius=R3, load=P3, speed=V, resolution=2, solver="pardiso")
+    finally:
+        mkl.MKL_Set_Num_Threads(ctypes.c_int(threads))
+    monkeypatch.setattr(linsolve._Pardiso, "_plain", plain)
+    assert r.success and costly and max(costly) <= linsolve.DEFLATE_STEPS
+    ref = rolling_cylinder(m, radius=R3, load=P3, speed=V, resolution=2, solver="splu")
+    assert r.friction == pytest.approx(ref.friction, rel=1e-9)
+    assert r.friction_dissipation == pytest.approx(ref.friction_dissipation, rel=1e-9)
