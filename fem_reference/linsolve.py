@@ -7,6 +7,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import logging
 
 import numpy as np
@@ -41,17 +42,78 @@ DEFLATE_TRIGGER = 100 * 1e-8
 DEFLATE_STEPS = 8
 PROBE_COLUMNS = 4
 
+# SuperLU's factor may take this share of the memory the system reports available when it starts
+MEMORY_SHARE = 0.9
+
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
+
+
+def _meminfo(path, key):
+    """The ``key`` line of a ``/proc`` status file in bytes, or None where there is none."""
+    try:
+        with open(path) as f:
+            for line in f:
+                if line.startswith(key + ":"):
+                    return int(line.split()[1]) * 1024  # the kernel reports kB
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
+
+def available_memory():
+    """Bytes the kernel reports as available to new allocations (``MemAvailable``), or None where
+    the platform does not say."""
+    return _meminfo("/proc/meminfo", "MemAvailable")
+
+
+@contextlib.contextmanager
+def _address_space_budget(budget):
+    """Let the process's address space grow by at most ``budget`` bytes inside the block.
+
+    SuperLU grows its factor as it fills in; on a broad-spectrum rubber that can outgrow the
+    machine (more than 13 GiB), where the kernel would swap or kill the process rather than fail
+    an allocation. Under the limit an allocation past the budget fails at once and SuperLU reports
+    it (``MemoryError``). Where resource limits or ``/proc`` are missing, the block runs unbounded.
+    """
+    try:
+        import resource
+    except ImportError:  # not a POSIX system
+        resource = None
+    used = _meminfo("/proc/self/status", "VmSize")
+    if resource is None or budget is None or used is None:
+        yield
+        return
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    limit = used + int(budget)
+    if (soft != resource.RLIM_INFINITY and soft <= limit) or (hard != resource.RLIM_INFINITY and hard < limit):
+        yield  # a tighter limit is already set
+        return
+    resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+    try:
+        yield
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
 
 
 class _SuperLU:
     name = "splu"
 
     def __init__(self, A):
-        # equilibration (row and column scaling) keeps the residual of the condensed
-        # rubber systems at 2e-10 where the unscaled factorisation stalls at 7e-8
-        self._lu = spla.splu(sp.csc_matrix(A), permc_spec="COLAMD", options={"Equil": True})
+        avail = available_memory()
+        budget = None if avail is None else MEMORY_SHARE * avail
+        try:
+            with _address_space_budget(budget):
+                # equilibration (row and column scaling) keeps the residual of the condensed
+                # rubber systems at 2e-10 where the unscaled factorisation stalls at 7e-8
+                self._lu = spla.splu(sp.csc_matrix(A), permc_spec="COLAMD", options={"Equil": True})
+        except MemoryError:
+            if budget is None:
+                raise
+            raise MemoryError(
+                f"SuperLU's factor of {A.shape[0]} unknowns ({A.nnz} entries) needs more than the "
+                f"{budget / 2**30:.2f} GiB of memory available"
+            ) from None
         self.nnz = int(self._lu.L.nnz + self._lu.U.nnz)  # entries of the factors (fill-in included)
 
     def solve(self, b):
@@ -99,7 +161,7 @@ class _Pardiso:
         return self.refinement_steps > DEFLATE_STEPS
 
     def solve(self, b):
-        if self._Q is None:
+        if self._Q is None or self.deflated == 0:
             return self._plain(b)
         # M^-1 A = I - P: x = y + Q z with y = M^-1 b and (M^-1 A Q) z = y - M^-1 A y, solved in
         # the least-squares sense through the QR factors of M^-1 A Q
@@ -137,8 +199,9 @@ class _Pardiso:
             k = min(2 * k, DEFLATE_MAX, n)
         keep = est > DEFLATE_TOL
         self._Q = np.ascontiguousarray(U[:, keep])
-        self._Qw, self._Rw = np.linalg.qr(self._plain(self._A @ self._Q))
         self.deflated = int(keep.sum())
+        if self.deflated:  # none is possible: a factor only slow to refine may be close to A
+            self._Qw, self._Rw = np.linalg.qr(self._plain(self._A @ self._Q))
         if np.finfo(np.longdouble).eps < np.finfo(float).eps:  # x86: 64-bit mantissa
             self.extended = self._A.astype(np.longdouble)
         log.debug(

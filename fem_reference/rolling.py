@@ -77,10 +77,12 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
         # (linsolve._Pardiso.deflate) misses the residual, factor again with SuperLU's partial
         # pivoting, every term carried by its outflow values: SuperLU fills the condensed bands
         # of broad spectra (12 GiB on a 10-term rubber) but not the carried form's local couplings
-        log.warning(
-            "%s solve residual %.2e > %.1e: factoring with SuperLU", op.factor.name, op.residual, op.residual_limit
-        )
-        op = steady_operator(ops, material, V, solver="splu", condense=False)
+        missed = f"{op.factor.name} solve residual {op.residual:.2e} > {op.residual_limit:.1e}"
+        log.warning("%s: factoring with SuperLU", missed)
+        try:
+            op = steady_operator(ops, material, V, solver="splu", condense=False)
+        except MemoryError as err:
+            raise ConvergenceError(f"{missed}, and the fallback to SuperLU failed: {err}") from err
         w_top = _flexibility(op, top.ydofs, ydofs)
     t2 = time.perf_counter()
 
@@ -210,7 +212,11 @@ def rolling_cylinder(
     bem.errors.InputError
         Bad parameter.
     bem.errors.ConvergenceError
-        The active set does not settle, or the contact reaches the edge of the band.
+        The active set does not settle, the contact reaches the edge of the band, or PARDISO's
+        solve misses its residual and SuperLU's factor would outgrow the available memory.
+    MemoryError
+        SuperLU, asked for (``solver="splu"``) or taken for terms carried by their outflow values,
+        would outgrow the available memory (:data:`fem_reference.linsolve.MEMORY_SHARE` of it).
     """
     R, P, V, n_res, band, maxiter, ratio, fold = check_inputs(
         material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh

@@ -246,6 +246,60 @@ def test_pardiso_factor_released_with_its_operator(monkeypatch):
     assert freed == [True]
 
 
+def test_superlu_that_would_outgrow_the_memory_says_so(monkeypatch):
+    # SuperLU fills in as it goes: on broad-spectrum rubbers past 13 GiB, where the kernel swaps or
+    # kills rather than failing. Its address space may grow by MEMORY_SHARE of what is available;
+    # with 4 MiB available the factor of a 22,500-unknown 2-D Laplacian (20 MiB of factors)
+    # must fail at once, naming the solver, the size and the budget
+    from fem_reference import linsolve
+
+    m = 150
+    lap = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(m, m))
+    A = sp.kronsum(lap, lap).tocsc()
+    full = factorize(A, "splu")
+    assert full.nnz * 12 > 16 * 2**20  # values and row indices of the factors outgrow 4 MiB
+    monkeypatch.setattr(linsolve, "available_memory", lambda: 4 * 2**20)
+    with pytest.raises(MemoryError, match=r"SuperLU's factor of 22500 unknowns .* 0\.00 GiB"):
+        factorize(A, "splu")
+    monkeypatch.setattr(linsolve, "available_memory", lambda: 2**30)
+    assert factorize(A, "splu").nnz == full.nnz  # a budget it fits in changes nothing
+
+
+@pytest.mark.pardiso
+def test_pardiso_miss_with_no_memory_for_the_superlu_fallback_is_an_error(monkeypatch):
+    # A PARDISO solve that misses its residual falls back to SuperLU; where SuperLU's factor would
+    # outgrow the memory, the run stops with an error that names both, never with a result.
+    # Forced here: a limit no solve can reach (no round-off floor either), and 4 MiB available
+    from bem import ConvergenceError
+    from fem_reference import linsolve
+
+    pytest.importorskip("pypardiso")
+    monkeypatch.setattr(linsolve, "RESIDUAL_LIMIT", 1e-30)
+    monkeypatch.setattr(linsolve, "FLOOR_FACTOR", 0.0)
+    monkeypatch.setattr(linsolve, "available_memory", lambda: 4 * 2**20)
+    m = rubber(2, 10.0)
+    with pytest.raises(ConvergenceError, match=r"pardiso solve residual .* > 1\.0e-30, and the fallback to SuperLU"):
+        rolling_cylinder(m, radius=R, load=P, speed=1e-3, resolution=1, solver="auto")
+
+
+@pytest.mark.pardiso
+def test_pardiso_deflation_that_finds_no_far_direction_leaves_the_solve_plain():
+    # The probe before a many-column solve deflates a factor whose own refinement was merely slow;
+    # such a factor can be close to A everywhere, and the range finder then keeps no direction.
+    # The solve must stay the plain one (a QR of zero columns made PARDISO fail with error -1).
+    from fem_reference.linsolve import solve_refined
+
+    pytest.importorskip("pypardiso")
+    A = (sp.random(300, 300, density=0.02, random_state=5) + sp.identity(300) * 10).tocsr()
+    fac = factorize(A, "pardiso")
+    assert fac.deflate() and fac.deflated == 0
+    assert not fac.deflate()  # once is enough
+    b = np.random.default_rng(2).standard_normal((300, 6))
+    x, res, limit = solve_refined(A, fac, b)
+    assert res <= limit
+    np.testing.assert_allclose(A @ x, b, rtol=0, atol=1e-10 * np.abs(b).max())
+
+
 @pytest.mark.pardiso
 def test_pardiso_solve_deflated_where_refinement_stalls():
     # E_inf/E0 = 10 standard solid at s = 3, resolution 2 (11,385 unknowns): PARDISO perturbs 2
