@@ -112,7 +112,7 @@ class _SuperLU:
                 raise
             raise MemoryError(
                 f"SuperLU's factor of {A.shape[0]} unknowns ({A.nnz} entries) needs more than the "
-                f"{budget / 2**30:.2f} GiB of memory available"
+                f"{budget / 2**30:.3g} GiB of memory available"
             ) from None
         self.nnz = int(self._lu.L.nnz + self._lu.U.nnz)  # entries of the factors (fill-in included)
 
