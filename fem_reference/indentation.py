@@ -23,7 +23,7 @@ from bem.errors import ConvergenceError, InputError
 from bem.materials.material import Material
 
 from .axisymmetric import AxisymmetricStepper, fixed_dofs_axisymmetric
-from .contact import COMPLEMENTARITY_LIMIT, complementarity_residual, gap_scale, solve_load_control
+from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
 from .kinematics import quadrature_operators
 from .mesh import half_space_mesh
 from .steady import stress_and_dissipation
@@ -61,7 +61,7 @@ class IndentationResult:
     success, message : bool, str
         True only if every linear solve is within its limit (``linear_residual <=
         linear_residual_limit``) and every step's complementarity ``residual`` is within
-        :data:`~fem_reference.contact.COMPLEMENTARITY_LIMIT`.
+        :func:`~fem_reference.contact.complementarity_limit` of that limit.
     linear_residual : float
         Relative residual of the linear solve (SuperLU or PARDISO) closest to its limit: the
         force balance against the load, ``||K u - f|| / ||f||``, the constraint rows against
@@ -285,7 +285,7 @@ def indentation(
         iterations=np.array(out["it"]),
         contact_force=np.array(out["f"]),
         timings={"total": time.perf_counter() - t_start},
-        success=stepper.residual <= stepper.residual_limit and worst <= COMPLEMENTARITY_LIMIT,
+        success=stepper.residual <= stepper.residual_limit and worst <= complementarity_limit(stepper.residual_limit),
         message=_message(stepper.residual, stepper.residual_limit, worst),
         linear_residual=float(stepper.residual),
         linear_residual_limit=float(stepper.residual_limit),
@@ -298,6 +298,7 @@ def _message(linear, limit, complementarity):
     problems = []
     if not linear <= limit:
         problems.append(f"linear solve residual {linear:.2e} > {limit:.1e}")
-    if not complementarity <= COMPLEMENTARITY_LIMIT:
-        problems.append(f"complementarity residual {complementarity:.2e} > {COMPLEMENTARITY_LIMIT:.0e}")
+    compl_limit = complementarity_limit(limit)
+    if not complementarity <= compl_limit:
+        problems.append(f"complementarity residual {complementarity:.2e} > {compl_limit:.1e}")
     return "; ".join(problems) if problems else "converged"

@@ -21,7 +21,7 @@ import numpy as np
 from bem.checks import check_int, check_positive
 from bem.errors import ConvergenceError, InputError
 
-from .contact import COMPLEMENTARITY_LIMIT, complementarity_residual, gap_scale, solve_load_control
+from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
 from .graded import fold_terms, graded_half_space, initial_edges
 from .kinematics import quadrature_operators
 from .mesh import half_space_mesh
@@ -324,8 +324,9 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
     if not lin <= lin_limit:
         problems.append(f"linear solve residual {lin:.2e} > {lin_limit:.1e}")
     residual = out["residual"]
-    if not residual <= COMPLEMENTARITY_LIMIT:
-        problems.append(f"complementarity residual {residual:.2e} > {COMPLEMENTARITY_LIMIT:.0e}")
+    compl_limit = complementarity_limit(lin_limit)
+    if not residual <= compl_limit:
+        problems.append(f"complementarity residual {residual:.2e} > {compl_limit:.1e}")
     timings = dict(out["timings"], total=time.perf_counter() - t_start)
     taus = material.relaxation_times
     layer = float(V * np.min(taus)) if taus.size and V > 0 else float("inf")

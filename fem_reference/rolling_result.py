@@ -52,9 +52,9 @@ class RollingResult:
     input_material : bem.Material
         The material as given (before folding).
     success, message : bool, str
-        ``success`` is True only if the complementarity ``residual`` is within
-        :data:`~fem_reference.contact.COMPLEMENTARITY_LIMIT` and every linear solve is within its
-        limit (``linear_residual <= linear_residual_limit``).
+        ``success`` is True only if every linear solve is within its limit (``linear_residual <=
+        linear_residual_limit``) and the complementarity ``residual`` is within
+        :func:`~fem_reference.contact.complementarity_limit` of that limit.
     timings : dict
         Wall times (s) of the last mesh: ``assemble``, ``factor`` (their sum
         ``assemble_factor``), ``flexibility``, ``contact``, ``fields``; ``total`` over all
