@@ -107,8 +107,10 @@ class _SuperLU:
                 # equilibration (row and column scaling) keeps the residual of the condensed
                 # rubber systems at 2e-10 where the unscaled factorisation stalls at 7e-8
                 self._lu = spla.splu(sp.csc_matrix(A), permc_spec="COLAMD", options={"Equil": True})
-        except MemoryError:
-            if budget is None:
+        except (MemoryError, RuntimeError) as err:
+            # SuperLU reports a failed allocation as MemoryError, or as RuntimeError ("SUPERLU_MALLOC
+            # fails ...") where it fails in the ordering
+            if budget is None or not (isinstance(err, MemoryError) or "MALLOC" in str(err).upper()):
                 raise
             raise MemoryError(
                 f"SuperLU's factor of {A.shape[0]} unknowns ({A.nnz} entries) needs more than the "
