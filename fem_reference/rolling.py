@@ -79,6 +79,7 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
         # of broad spectra (12 GiB on a 10-term rubber) but not the carried form's local couplings
         missed = f"{op.factor.name} solve residual {op.residual:.2e} > {op.residual_limit:.1e}"
         log.warning("%s: factoring with SuperLU", missed)
+        op = w_top = None  # PARDISO's factor and its deflation go before SuperLU's fill comes
         try:
             op = steady_operator(ops, material, V, solver="splu", condense=False)
         except MemoryError as err:
