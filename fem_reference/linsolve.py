@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import threading
 
 import numpy as np
 import scipy.sparse as sp
@@ -67,6 +68,13 @@ def available_memory():
     return _meminfo("/proc/meminfo", "MemAvailable")
 
 
+# The address-space limit is process-wide: factorisations in several threads share one, set by the
+# first to start and restored by the last to end (a thread restoring its own saved value while
+# another still ran could leave a limit in place for good)
+_BUDGET_LOCK = threading.Lock()
+_budget_state = {"active": 0, "saved": None}
+
+
 @contextlib.contextmanager
 def _address_space_budget(budget):
     """Let the process's address space grow by at most ``budget`` bytes inside the block.
@@ -74,26 +82,33 @@ def _address_space_budget(budget):
     SuperLU grows its factor as it fills in; on a broad-spectrum rubber that can outgrow the
     machine (more than 13 GiB), where the kernel would swap or kill the process rather than fail
     an allocation. Under the limit an allocation past the budget fails at once and SuperLU reports
-    it (``MemoryError``). Where resource limits or ``/proc`` are missing, the block runs unbounded.
+    it (``MemoryError``). Memory the process freed but kept mapped is reused without counting.
+    Where resource limits or ``/proc`` are missing, the block runs unbounded.
     """
     try:
         import resource
     except ImportError:  # not a POSIX system
-        resource = None
-    used = _meminfo("/proc/self/status", "VmSize")
-    if resource is None or budget is None or used is None:
         yield
         return
-    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
-    limit = used + int(budget)
-    if (soft != resource.RLIM_INFINITY and soft <= limit) or (hard != resource.RLIM_INFINITY and hard < limit):
-        yield  # a tighter limit is already set
-        return
-    resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+    with _BUDGET_LOCK:
+        if _budget_state["active"] == 0:
+            used = _meminfo("/proc/self/status", "VmSize")
+            soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+            if budget is not None and used is not None:
+                limit = used + int(budget)
+                unlimited = resource.RLIM_INFINITY
+                if (soft == unlimited or soft > limit) and (hard == unlimited or hard >= limit):
+                    resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+                    _budget_state["saved"] = (soft, hard)
+        _budget_state["active"] += 1
     try:
         yield
     finally:
-        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+        with _BUDGET_LOCK:
+            _budget_state["active"] -= 1
+            if _budget_state["active"] == 0 and _budget_state["saved"] is not None:
+                resource.setrlimit(resource.RLIMIT_AS, _budget_state["saved"])
+                _budget_state["saved"] = None
 
 
 class _SuperLU:

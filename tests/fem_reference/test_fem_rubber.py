@@ -279,6 +279,23 @@ def test_superlu_that_would_outgrow_the_memory_says_so(monkeypatch):
     assert factorize(A, "splu").nnz == full.nnz  # a budget it fits in changes nothing
 
 
+def test_memory_bound_of_overlapping_factorisations_is_restored():
+    # The address-space limit is process-wide. Two factorisations that overlap (threads) and end in
+    # the other order must leave the process's own limit as it was: restoring each one's saved
+    # value would leave the first one's limit in place for good
+    import resource
+
+    from fem_reference import linsolve
+
+    before = resource.getrlimit(resource.RLIMIT_AS)
+    first, second = linsolve._address_space_budget(2**30), linsolve._address_space_budget(2**20)
+    first.__enter__()
+    second.__enter__()
+    first.__exit__(None, None, None)
+    second.__exit__(None, None, None)
+    assert resource.getrlimit(resource.RLIMIT_AS) == before
+
+
 @pytest.mark.pardiso
 def test_pardiso_miss_with_no_memory_for_the_superlu_fallback_is_an_error(monkeypatch):
     # A PARDISO solve that misses its residual falls back to SuperLU; where SuperLU's factor would
