@@ -270,6 +270,7 @@ def indentation(
         from .vtk import write_indentation
 
         write_indentation(vtk, snaps, ops, material, R, P, rc)
+    message = _message(stepper.residual, stepper.residual_limit, worst)
     return IndentationResult(
         times=t_out,
         contact_radius=np.array(out["a"]),
@@ -285,13 +286,16 @@ def indentation(
         iterations=np.array(out["it"]),
         contact_force=np.array(out["f"]),
         timings={"total": time.perf_counter() - t_start},
-        success=stepper.residual <= stepper.residual_limit and worst <= complementarity_limit(stepper.residual_limit),
-        message=_message(stepper.residual, stepper.residual_limit, worst),
+        success=message == CONVERGED,
+        message=message,
         linear_residual=float(stepper.residual),
         linear_residual_limit=float(stepper.residual_limit),
         residual=worst,
         solver=stepper.factor.name,
     )
+
+
+CONVERGED = "converged"
 
 
 def _message(linear, limit, complementarity):
@@ -301,4 +305,4 @@ def _message(linear, limit, complementarity):
     compl_limit = complementarity_limit(limit)
     if not complementarity <= compl_limit:
         problems.append(f"complementarity residual {complementarity:.2e} > {compl_limit:.1e}")
-    return "; ".join(problems) if problems else "converged"
+    return "; ".join(problems) if problems else CONVERGED
