@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import os
 import threading
 
 import numpy as np
@@ -48,6 +49,13 @@ MEMORY_SHARE = 0.9
 
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
+
+# MKL's threaded factorisation sums updates in an order that varies from run to run; with the
+# saddle-point blocks' perturbed pivots that changes which pivots are perturbed, and so whether a
+# hard solve reaches its residual. Conditional numerical reproducibility fixes the order (the
+# same result on the same machine with the same number of threads). MKL reads it when it starts,
+# so it is set here, before PARDISO is first imported; a value the user set is kept.
+os.environ.setdefault("MKL_CBWR", "AUTO")
 
 
 def _meminfo(path, key):

@@ -96,7 +96,8 @@ class RollingResult:
         element. Where it does not, the peak pressure is a value at an unresolved jump (``warnings``
         says so) and should not be judged pointwise.
     warnings : tuple of str
-        What the result cannot be trusted for (an unresolved leading-edge layer).
+        What the result cannot be trusted for (an unresolved leading-edge layer, a graded mesh that did
+        not settle on the contact edges within ``passes``).
     """
 
     x: np.ndarray

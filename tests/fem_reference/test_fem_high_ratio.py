@@ -22,13 +22,17 @@ def test_fem_against_hunter_at_modulus_ratio_1000():
     r = rolling_cylinder(m, radius=R, load=P, speed=V, mesh="graded")
     h = hunter(m, radius=R, load=P, speed=V)
     assert r.success, r.message
+    # the trailing edge's estimate alternated between two meshes half an edge element apart; the
+    # passes stop once it comes back (they had run into their limit of 8)
+    assert r.passes < 8 and not [w for w in r.warnings if "did not settle" in w], r.warnings
     # measured (resolution 6, grading 1.5): -0.115 % (moment), +0.68 % (dissipation); limit 1 %:
     # margin 1.47x over the larger
     assert abs(r.friction / h.friction - 1) < 0.01
     assert abs(r.friction_dissipation / h.friction - 1) < 0.01
-    # measured +3.5 % (+1.14 % on a mesh whose passes stopped a micrometre elsewhere: the nodal peak of
-    # the layer V tau = 3.7 um over 2.6 smallest elements); limit 5 %: margin 1.4x over the larger
-    assert abs(r.peak_pressure / h.peak_pressure - 1) < 0.05
+    # measured +0.46 % with the layer V tau = 3.7 um over 4 of the smallest elements, and -0.46 to
+    # +0.50 % at 0.85, 1.15 and 10 times this speed; limit 2 % (the target): margin 4x. Over 2 elements
+    # it was +3.5 % here and +3.8 % at 0.85 times the speed, and this assertion fails
+    assert abs(r.peak_pressure / h.peak_pressure - 1) < 0.02
     # leading edge measured 1.3 um = 0.08 % of the contact width (was 27 um = 1.7 %); limit 0.5 %
     # of the width: margin 6x. The trailing edge (35 um = 2.2 %, where Hunter's pressure is 1 % of
     # its peak at 36 um from the edge) is located from pressures of that size and is not asserted.
