@@ -50,12 +50,20 @@ MEMORY_SHARE = 0.9
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
 
-# MKL's threaded factorisation sums updates in an order that varies from run to run; with the
-# saddle-point blocks' perturbed pivots that changes which pivots are perturbed, and so whether a
-# hard solve reaches its residual. Conditional numerical reproducibility fixes the order (the
-# same result on the same machine with the same number of threads). MKL reads it when it starts,
-# so it is set here, before PARDISO is first imported; a value the user set is kept.
-os.environ.setdefault("MKL_CBWR", "AUTO")
+
+def reproducible_mkl():
+    """Ask MKL for conditional numerical reproducibility (``MKL_CBWR=AUTO``) unless the user chose.
+
+    MKL's threaded factorisation sums updates in an order that varies from run to run; with the
+    saddle-point blocks' perturbed pivots that changes which pivots are perturbed, and so whether a
+    hard solve reaches its residual. This mode fixes the order: the same result on the same machine
+    with the same number of threads. MKL reads it when it starts, so it is set when this module is
+    imported, before PARDISO is.
+    """
+    os.environ.setdefault("MKL_CBWR", "AUTO")
+
+
+reproducible_mkl()
 
 
 def _meminfo(path, key):
