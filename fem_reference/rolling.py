@@ -201,9 +201,9 @@ def rolling_cylinder(
         whose memory reaches at most an element upstream (:func:`fem_reference.steady.condensable`).
     layer_floor : float
         Graded mesh: thinnest leading-edge layer ``V tau_k`` the mesh resolves, in edge elements.
-        A layer at least this thick gets :data:`~fem_reference.graded.LAYER_ELEMENTS` elements; toward a
-        thinner one the elements stop at
-        this size, and the result says the peak pressure is not resolved.
+        A layer at least this thick gets :data:`~fem_reference.graded.LAYER_ELEMENTS` elements;
+        toward a thinner one the elements stop at this size, and the result says the peak pressure
+        is not resolved.
     passes : int
         Graded mesh: most meshes solved while the edges settle.
 
@@ -306,9 +306,9 @@ def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, pass
             out["candidates"],
             ", ".join(f"{k} {v:.2f} s" for k, v in out["timings"].items()),
         )
-        # the trailing edge against its own elements, the leading edge within the margin of its
-        # layer's fine elements (half the thinnest V tau, LAYER_ELEMENTS / 2 of them): a focus a
-        # coarse element off leaves the layer unresolved
+        # the trailing edge against its own elements, the leading edge within LAYER_ELEMENTS / 2 of
+        # the smallest elements: where the layer is resolved, the margin of its fine zone (a focus a
+        # coarse element off would leave it unresolved); where it is not, its peak is not judged
         moves = (abs(new_trail - trail), abs(new_lead - lead))
         limits = (0.25 * h_edge, 0.5 * LAYER_ELEMENTS * hs.element_size)
         # the trailing edge is located from nodal pressures near zero, and its estimate can alternate
