@@ -22,7 +22,7 @@ from bem.checks import check_int, check_positive
 from bem.errors import ConvergenceError, InputError
 
 from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
-from .graded import LAYER_ELEMENTS, fold_terms, graded_half_space, initial_edges
+from .graded import LAYER_ELEMENTS, SINGLE_TERM_FLOOR, fold_terms, graded_half_space, initial_edges
 from .kinematics import quadrature_operators
 from .mesh import half_space_mesh
 from .rolling_inputs import check_inputs, domain_size, hertz_half_width
@@ -203,7 +203,8 @@ def rolling_cylinder(
         Graded mesh: thinnest leading-edge layer ``V tau_k`` the mesh resolves, in edge elements.
         A layer at least this thick gets :data:`~fem_reference.graded.LAYER_ELEMENTS` elements;
         toward a thinner one the elements stop at this size, and the result says the peak pressure
-        is not resolved.
+        is not resolved. Where a single term is kept (a standard solid) its layer is resolved
+        down to :data:`~fem_reference.graded.SINGLE_TERM_FLOOR` edge elements whatever this is.
     passes : int
         Graded mesh: most meshes solved while the edges settle.
 
@@ -275,7 +276,12 @@ def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, pass
     trail, lead = initial_edges(material, R, P, V)
     L0 = domain_size(material, R, P, V) if domain is None else check_positive("domain", domain)
     a_c = 0.5 * (lead - trail)
-    material, terms = fold_terms(material, V, layer_floor * a_c / n_res, L0, fold)
+    given = material
+    material, terms = fold_terms(given, V, layer_floor * a_c / n_res, L0, fold)
+    if len(terms["kept"]) == 1:
+        # a single term's layer may be meshed below the floor (graded_half_space): fold against the
+        # finest elements it may get (folding against smaller elements keeps a superset of the terms)
+        material, terms = fold_terms(given, V, SINGLE_TERM_FLOOR * a_c / n_res, L0, fold)
     L = domain_size(material, R, P, V) if domain is None else L0
     widen = 0.5
     out = hs = last_trail = None

@@ -7,6 +7,8 @@ downstream on the graded mesh, with errors of -2.62 % (moment form), -1.70 % (di
 and -4.2 % (peak pressure): this test fails on it.
 """
 
+import math
+
 import pytest
 
 from bem import Material
@@ -37,3 +39,21 @@ def test_fem_against_hunter_at_modulus_ratio_1000():
     # of the width: margin 6x. The trailing edge (35 um = 2.2 %, where Hunter's pressure is 1 % of
     # its peak at 36 um from the edge) is located from pressures of that size and is not asserted.
     assert abs(r.leading_edge - h.leading_edge) < 0.005 * 2 * h.half_width
+
+
+@pytest.mark.slow
+def test_fem_resolves_the_layer_of_a_standard_solid_below_the_floor():
+    # V lambda / a0 = 0.3: the layer V tau = 0.66 um is 0.18 % of an edge element, under layer_floor
+    # (1 %). As the single term its layer is resolved all the same. Measured: peak pressure +0.12 %
+    # (limit 2 %, the target: margin 16x; at the floor it was 18 % low and reported unresolved, and
+    # this assertion fails there), friction -0.04 % (moment) and +0.66 % (dissipation), limit 1 %
+    m = Material.standard_linear_solid(E0=2e6, E_inf=2e9, relaxation_time=0.01, nu=0.5)
+    a0 = (4 * P * R * 0.75 / (math.pi * 2e6)) ** 0.5
+    V = 0.3 * a0 / 10.0  # creep time lambda = 10 ms * 1000
+    r = rolling_cylinder(m, radius=R, load=P, speed=V, mesh="graded")
+    h = hunter(m, radius=R, load=P, speed=V)
+    assert r.success, r.message
+    assert r.peak_resolved and r.thinnest_layer == pytest.approx(6.56e-7, rel=0.01), r.warnings
+    assert abs(r.peak_pressure / h.peak_pressure - 1) < 0.02
+    assert abs(r.friction / h.friction - 1) < 0.01
+    assert abs(r.friction_dissipation / h.friction - 1) < 0.01

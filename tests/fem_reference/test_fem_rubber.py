@@ -11,7 +11,7 @@ import scipy.sparse.linalg as spla
 
 from bem import Material
 from fem_reference import rolling_cylinder
-from fem_reference.graded import LAYER_ELEMENTS, fold_terms, graded_half_space
+from fem_reference.graded import LAYER_ELEMENTS, SINGLE_TERM_FLOOR, fold_terms, graded_half_space
 from fem_reference.grading import graded_coordinates
 from fem_reference.linsolve import RESIDUAL_LIMIT, factorize, relative_residual, residual_limit, solve_refined
 
@@ -56,6 +56,25 @@ def test_graded_half_space_resolves_leading_layer():
     d = np.diff(hs.x)
     i = np.argmin(np.abs(hs.x - 0.003))
     assert min(d[i - 1], d[i]) == pytest.approx(0.1 * 1e-5 / LAYER_ELEMENTS, rel=0.3)
+
+
+def test_graded_half_space_resolves_a_single_terms_layer_below_the_floor():
+    # a standard solid's one layer is resolved below layer_floor if it is at least SINGLE_TERM_FLOOR
+    # edge elements; thinner, or with several terms, the floor stays. Edge element 0.0025 / 5 = 5e-4 m,
+    # floor 5e-6 m.
+    edges, h_edge = (-0.002, 0.003), 0.0025 / 5
+    sls = Material.standard_linear_solid(E0=1e6, E_inf=1e9, relaxation_time=1e-2, nu=0.5)
+
+    def smallest(m, V):
+        hs = graded_half_space(edges, m, V, resolution=5, length=0.1, ratio=1.25, layer_floor=1e-2)
+        return float(np.min(np.diff(hs.x)))
+
+    V = 1e-4  # layer 1e-6 m, a fifth of the floor
+    assert smallest(sls, V) == pytest.approx(V * 1e-2 / LAYER_ELEMENTS, rel=0.3)
+    V = SINGLE_TERM_FLOOR * h_edge / 1e-2  # the thinnest layer so resolved
+    assert smallest(sls, V) == pytest.approx(V * 1e-2 / LAYER_ELEMENTS, rel=0.3)
+    assert smallest(sls, 0.9 * V) == pytest.approx(1e-2 * h_edge, rel=0.3)
+    assert smallest(rubber(4, 100), V * 1e3) == pytest.approx(1e-2 * h_edge, rel=0.3)  # 1e-6 m thinnest
 
 
 def test_fold_terms_only_inactive():
