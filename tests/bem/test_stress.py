@@ -32,6 +32,9 @@ the last bits (another machine's FFT round-off does that): their products then v
 of several while their answer does not. Regenerating therefore also solves every case with
 ``PERTURBATIONS`` copies of its heights perturbed by 1e-14 relative (seeded), and stores the
 largest product count seen (``matvecs_max``); a case's products are compared with that envelope.
+The perturbations do not find every path another machine takes (an AVX-512 machine took 4318
+products on a case whose stored envelope was 2520), so regenerating with the same code keeps the
+envelope the stored file had: run on each kind of machine, it holds the most seen on any.
 So that no regression hides in the envelopes, the whole suite's products are compared too
 (:func:`test_total_products`, against the stored nominal total within ``TOTAL_FACTOR``).
 
@@ -608,8 +611,18 @@ def _write_expected():
         "checks",
     )
     cases = {r["id"]: {k: r[k] for k in keep if k in r} for r in RECORDS if r.get("id")}
-    if EXPECTED_PATH.exists():  # a partial run (-k) updates only the cases it ran
-        cases = {**json.loads(EXPECTED_PATH.read_text())["cases"], **cases}
+    if EXPECTED_PATH.exists():
+        stored = json.loads(EXPECTED_PATH.read_text())
+        if stored.get("made_with") == made_with():
+            # the same code regenerated on another machine: its FFT round-off differs in the last
+            # bits, and a path-sensitive case may take another path there, so the envelope keeps
+            # the most products either saw
+            for key, case in cases.items():
+                old = stored["cases"].get(key, {})
+                seen = [case.get("matvecs_max"), old.get("matvecs"), old.get("matvecs_max")]
+                if case.get("matvecs") is not None and old.get("outcome") == case.get("outcome"):
+                    case["matvecs_max"] = max(v for v in [*seen, case["matvecs"]] if v is not None)
+        cases = {**stored["cases"], **cases}  # a partial run (-k) updates only the cases it ran
     EXPECTED_PATH.write_text(
         json.dumps(
             {
@@ -618,7 +631,8 @@ def _write_expected():
                 f"{platform.python_version()}, numpy {np.__version__}). Each case must end as stored "
                 "(a stored ConvergenceError may now converge) with its checks within the tolerances "
                 "stated in tests/bem/test_stress.py; matvecs_max is the most products of "
-                f"{PERTURBATIONS} solves with the heights perturbed by 1e-14 (path sensitivity).",
+                f"{PERTURBATIONS} solves with the heights perturbed by 1e-14 (path sensitivity), and of "
+                "the stored solves where the file was regenerated with the same code on another machine.",
                 "made_with": made_with(),
                 "total_matvecs": sum(c.get("matvecs", 0) for c in cases.values()),
                 "cases": dict(sorted(cases.items())),
