@@ -619,9 +619,9 @@ def _write_expected():
             # the most products either saw
             for key, case in cases.items():
                 old = stored["cases"].get(key, {})
-                seen = [case.get("matvecs_max"), old.get("matvecs"), old.get("matvecs_max")]
                 if case.get("matvecs") is not None and old.get("outcome") == case.get("outcome"):
-                    case["matvecs_max"] = max(v for v in [*seen, case["matvecs"]] if v is not None)
+                    seen = (case["matvecs"], case.get("matvecs_max"), old.get("matvecs"), old.get("matvecs_max"))
+                    case["matvecs_max"] = max(v for v in seen if v is not None)
         cases = {**stored["cases"], **cases}  # a partial run (-k) updates only the cases it ran
     EXPECTED_PATH.write_text(
         json.dumps(
