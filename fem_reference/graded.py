@@ -8,7 +8,9 @@ A tensor mesh of rectangles, graded geometrically (:mod:`fem_reference.grading`)
   layer of width ``ell_k = V tau_k`` behind the edge: the thinnest over the kept terms gets
   :data:`LAYER_ELEMENTS` elements if it is at least ``layer_floor * a_c / resolution`` (for a
   single kept term, :data:`SINGLE_TERM_FLOOR` instead, if lower); a thinner one gets elements of
-  that floor and is not resolved;
+  that floor and is not resolved; where those elements would be smaller than the block
+  half-width over :data:`MAX_SPAN` (elements that long and thin spoil the factors), the edge
+  elements stay and the layer is not resolved either;
 - in depth toward the surface (size ``a_c / resolution`` at ``y = 0``).
 
 Every row of quadrature points stays a horizontal line (a streamline), so the exact
@@ -45,6 +47,14 @@ LAYER_ELEMENTS = 4
 # and 1.8e-4 edge elements; at 1.2e-4 the contact's active set cycled (elements 3e-5 edge elements
 # along a surface row that spans the whole block), so a margin of four from there
 SINGLE_TERM_FLOOR = 5e-4
+# largest block half-width over the leading-edge elements. The tensor mesh carries its smallest
+# columns through the whole depth and its smallest row along the whole length, so this is about the
+# largest aspect ratio of its elements, and the factors lose accuracy with it. Measured on broad
+# rubbers (E_inf/E0 = 500-1000): refined meshes solved at spans up to 6.4e6 and missed PARDISO's
+# residual limit at 1.6e7 (by 1.7 times) and 4e7-1.6e8 (by up to three orders), two decades above
+# the friction peak, where the block (30 V lambda_max) is 1e4-1e5 contact half-widths; there the
+# same blocks solved with no refinement toward the layer (spans of 4e5-1.3e6, edge elements)
+MAX_SPAN = 1e7
 
 
 def fold_terms(material, speed, h_min, length, tol):
@@ -101,7 +111,7 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
         Largest growth between neighbouring elements.
     layer_floor : float
         Thinnest leading-edge layer the mesh resolves, in edge elements (and the element size
-        toward a thinner one).
+        toward a thinner one); none where that would take elements below ``length / MAX_SPAN``.
     """
     from .mesh import HalfSpaceMesh, half_space_boundaries
 
@@ -121,8 +131,14 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
     # and reported unresolved: refining toward it would add rows of elements along the whole surface
     # (and lengthen the condensed memories, in elements) for a peak still not resolved
     h_lead = min(thinnest / LAYER_ELEMENTS if thinnest >= floor else floor, h_edge)
+    resolved = floor <= thinnest < np.inf
+    if length > MAX_SPAN * h_lead:
+        # a block many decades larger than the layer (the wake of a slow creep mode at high speed):
+        # elements of the layer's size would be needles across it, and elements in between solved no
+        # better (MAX_SPAN), so the layer is left to the edge elements and reported unresolved
+        h_lead, resolved = h_edge, False
     caps = [(trail, lead, h_edge)]
-    if floor <= thinnest < np.inf:
+    if resolved:
         # the whole layer at that size, and half a layer beyond it on each side: the nodal peak then
         # does not depend on where within that margin the edge settles (rolling's passes)
         pad = 0.5 * LAYER_ELEMENTS * h_lead

@@ -130,9 +130,11 @@ def _address_space_budget(budget):
 class _SuperLU:
     name = "splu"
 
-    def __init__(self, A):
+    def __init__(self, A, memory=None):
         avail = available_memory()
         budget = None if avail is None else MEMORY_SHARE * avail
+        if memory is not None:
+            budget = float(memory) if budget is None else min(budget, float(memory))
         try:
             with _address_space_budget(budget):
                 # equilibration (row and column scaling) keeps the residual of the condensed
@@ -267,7 +269,7 @@ def pardiso_available():
     return True
 
 
-def factorize(A, solver="auto"):
+def factorize(A, solver="auto", memory=None):
     """Factor the square sparse matrix ``A``; returns an object with ``solve(b)``, ``name`` and
     ``nnz`` (the entries of the factors, fill-in included).
 
@@ -276,13 +278,16 @@ def factorize(A, solver="auto"):
     A : scipy.sparse matrix
     solver : {"auto", "splu", "pardiso"}
         ``"auto"`` uses PARDISO if ``pypardiso`` is importable, else SuperLU.
+    memory : float, optional
+        Most bytes SuperLU's factorisation may add to the process (``MemoryError`` beyond); at
+        most :data:`MEMORY_SHARE` of the memory available in any case.
     """
     if solver not in SOLVERS:
         raise InputError(f"solver must be one of {SOLVERS}, got {solver!r}")
     if solver == "pardiso" and not pardiso_available():
         raise InputError("solver='pardiso' needs the optional package pypardiso (pip install pypardiso)")
     use_pardiso = solver == "pardiso" or (solver == "auto" and pardiso_available())
-    fac = _Pardiso(A) if use_pardiso else _SuperLU(A)
+    fac = _Pardiso(A) if use_pardiso else _SuperLU(A, memory=memory)
     log.debug("factorised %d unknowns with %s", A.shape[0], fac.name)
     return fac
 

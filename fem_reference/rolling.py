@@ -24,6 +24,7 @@ from bem.errors import ConvergenceError, InputError
 from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
 from .graded import LAYER_ELEMENTS, SINGLE_TERM_FLOOR, fold_terms, graded_half_space, initial_edges
 from .kinematics import quadrature_operators
+from .linsolve import RESIDUAL_LIMIT, factorize
 from .mesh import half_space_mesh
 from .rolling_inputs import check_inputs, domain_size, hertz_half_width
 from .rolling_result import RollingResult
@@ -61,6 +62,48 @@ def _flexibility(op, top_dofs, ydofs):
     return w
 
 
+# SuperLU's factor of the same (condensed) system may take this many times the entries of PARDISO's
+# (8 bytes of value and 8 of indices and work each) before the carried form is taken instead.
+# Measured: 2.6 times on a 10-term rubber two decades above its friction peak (87 million entries,
+# 19 s), where the carried form took 14 GiB; on broad spectra near their peak the condensed bands
+# fill SuperLU's factor to 12 GiB, and the carried form's local couplings do not
+CONDENSED_FILL = 8.0
+
+
+def _missed(op, solver):
+    """What PARDISO's solves with ``op`` missed (``solver="auto"``), or None where they met their limit."""
+    if solver != "auto" or op.factor.name == "splu" or op.residual <= op.residual_limit:
+        return None
+    missed = f"{op.factor.name} solve residual {op.residual:.2e} > {op.residual_limit:.1e}"
+    log.warning("%s: factoring with SuperLU", missed)
+    return missed
+
+
+def _superlu_operator(ops, material, V, op, missed):
+    """The operator ``op``, whose PARDISO solve missed its residual, factored with SuperLU.
+
+    PARDISO perturbs small pivots of the saddle-point system; where even its deflated solve
+    (:meth:`~fem_reference.linsolve._Pardiso.deflate`) misses, SuperLU's partial pivoting solves it.
+    First the same system, if its factor stays within :data:`CONDENSED_FILL` times PARDISO's; else
+    every term carried by its outflow values.
+    """
+    from dataclasses import replace
+
+    budget = CONDENSED_FILL * 16.0 * op.factor.nnz  # nnz is -1 where PARDISO does not report it
+    op = replace(op, factor=None)  # PARDISO's factor and its deflation go before SuperLU's fill comes
+    if budget > 0:
+        try:
+            fac = factorize(op.matrix, "splu", memory=budget)
+            return replace(op, factor=fac, residual=0.0, residual_limit=RESIDUAL_LIMIT)
+        except MemoryError as err:
+            log.warning("%s; carrying every term by its outflow values", err)
+    op = None
+    try:
+        return steady_operator(ops, material, V, solver="splu", condense=False)
+    except MemoryError as err:
+        raise ConvergenceError(f"{missed}, and the fallback to SuperLU failed: {err}") from err
+
+
 def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, active_width):
     """Factor, condense onto the candidate nodes, solve the contact and the fields."""
     t0 = time.perf_counter()
@@ -72,18 +115,10 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     cand = (top.x >= band[0] - 1e-12 * abs(band[0])) & (top.x <= band[1] + 1e-12 * abs(band[1]))
     ydofs = top.ydofs[cand]
     w_top = _flexibility(op, top.ydofs, ydofs)
-    if solver == "auto" and op.factor.name != "splu" and not op.residual <= op.residual_limit:
-        # PARDISO perturbs small pivots of the saddle-point system; where even its deflated solve
-        # (linsolve._Pardiso.deflate) misses the residual, factor again with SuperLU's partial
-        # pivoting, every term carried by its outflow values: SuperLU fills the condensed bands
-        # of broad spectra (12 GiB on a 10-term rubber) but not the carried form's local couplings
-        missed = f"{op.factor.name} solve residual {op.residual:.2e} > {op.residual_limit:.1e}"
-        log.warning("%s: factoring with SuperLU", missed)
-        op = w_top = None  # PARDISO's factor and its deflation go before SuperLU's fill comes
-        try:
-            op = steady_operator(ops, material, V, solver="splu", condense=False)
-        except MemoryError as err:
-            raise ConvergenceError(f"{missed}, and the fallback to SuperLU failed: {err}") from err
+    missed = _missed(op, solver)
+    if missed:
+        w_top = None
+        op = _superlu_operator(ops, material, V, op, missed)
         w_top = _flexibility(op, top.ydofs, ydofs)
     t2 = time.perf_counter()
 
@@ -102,6 +137,11 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     f = np.zeros(ops.basis.N)
     f[ydofs] = -sol.lam  # the contact forces on the body
     u, p, alpha = op.solve(f)
+    missed = _missed(op, solver)
+    if missed:
+        # the flexibility's solves met the limit, so the contact stands; only this solve is redone
+        op = _superlu_operator(ops, material, V, op, missed)
+        u, p, alpha = op.solve(f)
     # the contact condition as the field solve satisfies it: gaps from the displaced surface
     gap_field = -u[ydofs] + xc**2 / (2 * R) - sol.d
     residual = complementarity_residual(sol.lam, gap_field, sol.active, P, gap_scale(sol.d, hc[sol.active]))
@@ -205,6 +245,9 @@ def rolling_cylinder(
         toward a thinner one the elements stop at this size, and the result says the peak pressure
         is not resolved. Where a single term is kept (a standard solid) its layer is resolved
         down to :data:`~fem_reference.graded.SINGLE_TERM_FLOOR` edge elements whatever this is.
+        Nowhere are the elements refined below the block half-width over
+        :data:`~fem_reference.graded.MAX_SPAN`: a layer that would need it is left to the edge
+        elements and reported unresolved (two decades above a broad rubber's friction peak).
     passes : int
         Graded mesh: most meshes solved while the edges settle.
 
@@ -354,11 +397,14 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
     taus = material.relaxation_times
     layer = float(V * np.min(taus)) if taus.size and V > 0 else float("inf")
     h_min = float(np.min(np.diff(hs.x)))
+    # the graded mesh puts LAYER_ELEMENTS elements across a layer it resolves (graded_half_space)
+    across = LAYER_ELEMENTS if mesh == "graded" else 1
+    resolved = layer >= across * h_min * (1 - 1e-6)
     warnings = ()
-    if layer < h_min:
+    if not resolved:
         warnings = (
-            f"peak pressure not resolved: the thinnest leading-edge layer V tau_k = {layer:.3g} m is below the "
-            f"smallest element ({h_min:.3g} m)",
+            f"peak pressure not resolved: the thinnest leading-edge layer V tau_k = {layer:.3g} m spans "
+            f"{layer / h_min:.3g} of the smallest elements ({h_min:.3g} m; a resolved one spans {across})",
         )
     if "unsettled" in out:
         warnings += (out["unsettled"],)
@@ -422,7 +468,7 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         factor_nonzeros=int(getattr(op.factor, "nnz", -1)),  # -1: a solver that does not report it
         thinnest_layer=layer,
         smallest_element=h_min,
-        peak_resolved=layer >= h_min,
+        peak_resolved=resolved,
         warnings=warnings,
     )
     if vtk is not None:

@@ -92,9 +92,10 @@ class RollingResult:
     smallest_element : float
         The smallest element along the flow (m).
     peak_resolved : bool
-        ``thinnest_layer >= smallest_element``: the pressure's leading-edge layer spans at least one
-        element. Where it does not, the peak pressure is a value at an unresolved jump (``warnings``
-        says so) and should not be judged pointwise.
+        The pressure's leading-edge layer ``thinnest_layer`` spans at least one ``smallest_element``
+        (uniform mesh) or :data:`~fem_reference.graded.LAYER_ELEMENTS` of them (graded mesh, which
+        puts that many across a layer it resolves). Where it does not, the peak pressure is a value
+        at an unresolved jump (``warnings`` says so) and should not be judged pointwise.
     warnings : tuple of str
         What the result cannot be trusted for (an unresolved leading-edge layer, a graded mesh that did
         not settle on the contact edges within ``passes``).

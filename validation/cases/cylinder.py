@@ -427,7 +427,7 @@ def run_high_ratio(*, quick, vtk_dir, root, tamper):
             label,
             metrics.rel_diff(sol["peak_pressure"], ex.peak_pressure),
             t["peak"] if sol["peak_resolved"] else None,
-            w["peak"] if sol["peak_resolved"] else "not judged: the leading-edge layer is below the smallest element",
+            w["peak"] if sol["peak_resolved"] else "not judged: the leading-edge layer is not resolved",
         )
         for metric, got, ref in (
             ("leading_edge_error_widths", sol["leading_edge"], ex.leading_edge),
