@@ -98,7 +98,8 @@ class RollingResult:
         at an unresolved jump (``warnings`` says so) and should not be judged pointwise.
     warnings : tuple of str
         What the result cannot be trusted for (an unresolved leading-edge layer, a graded mesh that did
-        not settle on the contact edges within ``passes``).
+        not settle on the contact edges within ``passes``, the two forms of the friction more than
+        :data:`~fem_reference.rolling.FORM_GAP` apart).
     """
 
     x: np.ndarray
