@@ -269,6 +269,23 @@ def test_rubber_against_isolated_bem_at_friction_peak():
     assert abs(r.trailing_edge - trail) < 0.02 * width
 
 
+def _broad_rubber_against_the_bem(name, V):
+    """A default graded run of a ``broad`` rubber (``viscobem_bench.fem``) that must succeed with both
+    forms of the friction within the FEM's 1 % target of the BEM on 2^13 points, in under 8 GiB
+    (the peak resident memory of the whole test process)."""
+    from viscobem_bench.fem import broad_bem, broad_material
+
+    m, R2, P2 = broad_material(name)
+    ref = broad_bem(name, V)
+    r = rolling_cylinder(m, radius=R2, load=P2, speed=V, mesh="graded")
+    print(f"{name} at {V:g} m/s: {r.n_unknowns} unknowns, {r.solver}, peak RSS {r.peak_memory:.0f} MiB")
+    assert r.success and r.linear_residual <= r.linear_residual_limit
+    assert r.friction == pytest.approx(ref, rel=0.01)
+    assert r.friction_dissipation == pytest.approx(ref, rel=0.01)
+    assert r.peak_memory < 8 * 1024
+    return r
+
+
 @pytest.mark.slow
 def test_broad_spectrum_rubber_at_friction_peak():
     # 10-term rubber, E_inf/E0 = 500, log-normal weights (one decade wide) over tau =
@@ -277,19 +294,9 @@ def test_broad_spectrum_rubber_at_friction_peak():
     # -0.117 % (moment form) and +0.217 % (dissipation form); tolerance 1 % (the FEM's target,
     # margins 8.5x and 4.6x). 18,018 unknowns, 7.1M entries, 24M factor entries, 64 s CPU and
     # 2.7 GiB peak resident memory in a fresh process (memory that grew with the spectrum ran out
-    # at 16 GiB here); the memory is that of the whole test process, so below 8 GiB.
-    from viscobem_bench.fem import broad_bem, broad_material
-
-    m, R2, P2 = broad_material("lognormal10")
-    V = 9.79e-4
-    ref = broad_bem("lognormal10", V)
-    r = rolling_cylinder(m, radius=R2, load=P2, speed=V, mesh="graded")
-    print(f"broad rubber at its peak: {r.n_unknowns} unknowns, peak RSS {r.peak_memory:.0f} MiB")
-    assert r.success and r.linear_residual <= r.linear_residual_limit
+    # at 16 GiB here).
+    r = _broad_rubber_against_the_bem("lognormal10", 9.79e-4)
     assert len(r.terms["kept"]) == 10
-    assert r.friction == pytest.approx(ref, rel=0.01)
-    assert r.friction_dissipation == pytest.approx(ref, rel=0.01)
-    assert r.peak_memory < 8 * 1024
 
 
 @pytest.mark.slow
@@ -299,21 +306,9 @@ def test_broad_spectrum_rubber_two_decades_above_its_friction_peak():
     # around a contact of half-width 0.27 mm. Refined toward its 0.63 um layer, the tensor mesh's
     # solves missed their residual by three orders; past MAX_SPAN the layer is left to the edge
     # elements (27,104 unknowns). Measured against the BEM on 2^13 points: -0.030 % (moment form)
-    # and +0.190 % (dissipation form), PARDISO; tolerance 1 % (the FEM's target, margins 33x and 5x).
-    from viscobem_bench.fem import broad_bem, broad_material
-
-    m, R2, P2 = broad_material("equal20")
-    V = 6.31e-2
-    ref = broad_bem("equal20", V)
-    r = rolling_cylinder(m, radius=R2, load=P2, speed=V, mesh="graded")
-    print(
-        f"broad rubber two decades above its peak: {r.n_unknowns} unknowns, {r.solver}, peak RSS {r.peak_memory:.0f} MiB"
-    )
-    assert r.success and r.linear_residual <= r.linear_residual_limit
+    # and +0.190 % (dissipation form), PARDISO and SuperLU alike; tolerance 1 % (margins 33x and 5x).
+    r = _broad_rubber_against_the_bem("equal20", 6.31e-2)
     assert not r.peak_resolved and r.smallest_element > 10 * r.thinnest_layer
-    assert r.friction == pytest.approx(ref, rel=0.01)
-    assert r.friction_dissipation == pytest.approx(ref, rel=0.01)
-    assert r.peak_memory < 8 * 1024
 
 
 @pytest.mark.pardiso
