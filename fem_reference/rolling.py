@@ -15,6 +15,7 @@ from __future__ import annotations
 import logging
 import resource
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -88,18 +89,16 @@ def _missed(op, solver):
     return missed
 
 
-def _superlu_operator(ops, material, V, op, missed):
-    """The operator ``op``, whose PARDISO solve missed its residual, factored with SuperLU.
+def _superlu_operator(ops, material, V, op, nnz, missed):
+    """The operator ``op`` (its factor dropped), whose PARDISO solve missed its residual with a
+    factor of ``nnz`` entries, factored with SuperLU.
 
     PARDISO perturbs small pivots of the saddle-point system; where even its deflated solve
     (:meth:`~fem_reference.linsolve._Pardiso.deflate`) misses, SuperLU's partial pivoting solves it.
     First the same system, if its factor stays within :data:`CONDENSED_FILL` times PARDISO's; else
     every term carried by its outflow values.
     """
-    from dataclasses import replace
-
-    budget = CONDENSED_FILL * 16.0 * op.factor.nnz  # nnz is -1 where PARDISO does not report it
-    op = replace(op, factor=None)  # PARDISO's factor and its deflation go before SuperLU's fill comes
+    budget = CONDENSED_FILL * 16.0 * nnz  # nnz is -1 where PARDISO does not report it
     if budget > 0:
         try:
             fac = factorize(op.matrix, "splu", memory=budget)
@@ -126,8 +125,9 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     w_top = _flexibility(op, top.ydofs, ydofs)
     missed = _missed(op, solver)
     if missed:
-        w_top = None
-        op = _superlu_operator(ops, material, V, op, missed)
+        w_top, nnz = None, op.factor.nnz
+        op = replace(op, factor=None)  # PARDISO's factor and its deflation go before SuperLU's fill comes
+        op = _superlu_operator(ops, material, V, op, nnz, missed)
         w_top = _flexibility(op, top.ydofs, ydofs)
     t2 = time.perf_counter()
 
@@ -149,7 +149,9 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     missed = _missed(op, solver)
     if missed:
         # the flexibility's solves met the limit, so the contact stands; only this solve is redone
-        op = _superlu_operator(ops, material, V, op, missed)
+        nnz = op.factor.nnz
+        op = replace(op, factor=None)
+        op = _superlu_operator(ops, material, V, op, nnz, missed)
         u, p, alpha = op.solve(f)
     # the contact condition as the field solve satisfies it: gaps from the displaced surface
     gap_field = -u[ydofs] + xc**2 / (2 * R) - sol.d
@@ -508,6 +510,4 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
 
 
 def _drop_fields(res):
-    from dataclasses import replace
-
     return replace(res, fields={})
