@@ -32,9 +32,9 @@ the last bits (another machine's FFT round-off does that): their products then v
 of several while their answer does not. Regenerating therefore also solves every case with
 ``PERTURBATIONS`` copies of its heights perturbed by 1e-14 relative (seeded), and stores the
 largest product count seen (``matvecs_max``); a case's products are compared with that envelope.
-The perturbations do not find every path another machine takes (an AVX-512 machine took 4318
-products on a case whose stored envelope was 2520), so regenerating with the same code keeps the
-envelope the stored file had: run on each kind of machine, it holds the most seen on any.
+The perturbations do not find every path another machine's round-off takes (a case can take
+several times its stored envelope there), so regenerating with the same code keeps the envelope the
+stored file had: run on each kind of machine, it holds the most seen on any.
 So that no regression hides in the envelopes, the whole suite's products are compared too
 (:func:`test_total_products`, against the stored nominal total within ``TOTAL_FACTOR``).
 
