@@ -54,7 +54,8 @@ class SlidingResult:
         disagree, a solve that did not converge, ...), each saying what to change.
     attainable : float or None
         When a solve stopped at its round-off floor (``rtol`` below what floating point allows
-        this problem), the lowest residual it reached: ask for at least this. Otherwise ``None``.
+        this problem), the lowest residual it reached plus that floor (another path's round-off
+        settles up to a floor higher): ask for at least this. Otherwise ``None``.
     """
 
     pressure: np.ndarray

@@ -13,6 +13,7 @@ the residual no longer falls although it is within :data:`FLOOR_MARGIN` of its r
 """
 
 import logging
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -68,7 +69,8 @@ class ContactSolution:
     """Raw output of :func:`bem.contact.solve_contact` (fields shaped like the heights).
 
     ``attainable``: when the solve stopped at its round-off floor, the lowest residual it
-    reached (ask for an ``rtol`` at least this); otherwise ``None``."""
+    reached plus that floor, which any path reaches (ask for an ``rtol`` at least this); otherwise
+    ``None``."""
 
     pressure: np.ndarray
     displacement: np.ndarray
@@ -332,12 +334,22 @@ def _solution(run, it, outer, residuals):
     )
     attainable = None
     if not success and residuals.at_floor >= FLOOR_STALLS:
-        attainable = residuals.lowest
+        # at the floor the residual is round-off: another path (another processor's rounding)
+        # settles up to a floor higher, so what a solve can count on is the lowest plus the floor
+        floor = roundoff_floor(pb, it)
+        attainable = residuals.lowest + floor
         message += (
-            f"; the residual stopped falling near its round-off floor (about {roundoff_floor(pb, it):.1e}): "
-            f"{attainable:.2e} is what this problem attains, ask for rtol >= {attainable:.1e}"
+            f"; the residual stopped falling near its round-off floor (about {floor:.1e}) at "
+            f"{residuals.lowest:.2e}: this problem attains {attainable:.2e} on any path, ask for rtol >= "
+            f"{_rounded_up(attainable)}"
         )
     return ContactSolution(p, it.u, it.g, it.delta, outer, run.inner.matvecs, it.residual, success, message, attainable)
+
+
+def _rounded_up(x):
+    """``x`` in two significant figures, rounded up (a tolerance quoted to ask for must not be below it)."""
+    step = 10.0 ** (math.floor(math.log10(x)) - 1)
+    return f"{math.ceil(x / step) * step:.1e}"
 
 
 def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, options, initial=None, initial_approach=None):

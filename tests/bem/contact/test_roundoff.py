@@ -8,12 +8,15 @@ terms over the gap scale. rtol 1e-11 converges; a tighter rtol must stop within 
 fail, and name the residual it attained.
 """
 
+import re
+
 import numpy as np
 import pytest
 
 import bem
 from bem.contact import newton
 from bem.contact.inner import Problem
+from tests.conftest import perturbed
 
 SLS = bem.Material.standard_linear_solid(E0=1e5, E_inf=1e7, creep_time=0.01)
 KW = dict(speed=1.0, load=300.0, raise_on_failure=False)
@@ -43,10 +46,19 @@ def test_a_tolerance_below_the_floor_fails_fast_and_names_the_floor(profile, att
         bem.solve(profile, SLS, rtol=rtol, speed=1.0, load=300.0)
 
 
-def test_what_it_says_is_attainable_is(profile):
-    stopped = bem.solve(profile, SLS, rtol=1e-13, **KW)
-    asked = bem.solve(profile, SLS, rtol=1.1 * stopped.attainable, **KW)
-    assert asked.success and asked.residual <= 1.1 * stopped.attainable
+@pytest.mark.parametrize("seed", [None, *range(8)])
+def test_what_it_says_is_attainable_is(profile, seed):
+    """Asked for the tolerance the message quotes, a solve converges, whatever path round-off
+    sends it along: the profile as it is and with its heights perturbed by 1e-12 relative, as
+    another processor would round them (at the floor the residual settles a quantum of 4.6e-13
+    higher or lower from one path to the next; quoted alone, the lowest residual was not reached
+    again on 5 of these 8 perturbed copies)."""
+    surface = profile if seed is None else perturbed(profile, 1e-12, seed)
+    stopped = bem.solve(surface, SLS, rtol=1e-13, **KW)
+    quoted = float(re.search(r"ask for rtol >= (\S+)", stopped.message).group(1))
+    assert quoted >= stopped.attainable
+    asked = bem.solve(surface, SLS, rtol=quoted, **KW)
+    assert asked.success and asked.residual <= quoted
 
 
 def test_without_the_stop_the_solve_crawls(profile, attainable, monkeypatch):
