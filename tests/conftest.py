@@ -9,6 +9,8 @@ Materials
 """
 
 import contextlib
+import dataclasses
+import os
 
 import numpy as np
 import pytest
@@ -21,6 +23,7 @@ except ImportError:  # only a speed-up: single-threaded BLAS for many small dens
         return contextlib.nullcontext()
 
 
+import bem
 from bem import Material
 from validation.references.periodic_exact import murty_lcp  # the dense reference's LCP solver (Murty)
 
@@ -102,3 +105,35 @@ speeds = {speeds}
 [outputs]
 {outputs}
 """
+
+
+# ---------------------------------------------------------------- another machine's round-off
+PERTURB_ENV, PERTURB_SEED_ENV = "VISCOBEM_PERTURB_HEIGHTS", "VISCOBEM_PERTURB_SEED"
+
+
+def perturbed(surface, eps, seed=0):
+    """``surface`` with its heights multiplied by ``1 + eps z``, ``z`` standard normal (seeded):
+    a change in the last bits, the size of another processor's FFT round-off."""
+    rng = np.random.default_rng(seed)
+    h = surface.heights * (1.0 + eps * rng.standard_normal(surface.heights.shape))
+    return dataclasses.replace(surface, heights=h)
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _another_machine():
+    """With ``VISCOBEM_PERTURB_HEIGHTS=eps`` set, every surface a test hands to :func:`bem.solve` or
+    :func:`bem.friction_curve` is perturbed by ``eps`` relative (:func:`perturbed`, seeded by
+    ``VISCOBEM_PERTURB_SEED``, default 0: the same perturbation for the same surface), so that a
+    run stands for another machine whose round-off sends path-sensitive solves another way. The stress suite and the tests that bound operator
+    products must pass so (``1e-12``); tests that compare with exact solutions to round-off are
+    not meant to."""
+    eps = float(os.environ.get(PERTURB_ENV) or 0.0)
+    if not eps:
+        yield
+        return
+    seed = int(os.environ.get(PERTURB_SEED_ENV) or 0)
+    solve, curve = bem.solve, bem.friction_curve
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(bem, "solve", lambda surface, *a, **kw: solve(perturbed(surface, eps, seed), *a, **kw))
+        mp.setattr(bem, "friction_curve", lambda surface, *a, **kw: curve(perturbed(surface, eps, seed), *a, **kw))
+        yield

@@ -18,25 +18,25 @@ silent wrong answer. The ranges, each swept on its own around a middle case:
 
 Expected outcomes. ``tests/bem/stress_expected.json`` holds, per case (its test id), the outcome
 (converged, or ConvergenceError for the known hard cases) and the values of its checks.
-A case fails on a new ConvergenceError, and a converged case fails when its checks degrade:
-friction off its stored value by more than ``FRICTION_RTOL`` (relative) plus
-``FRICTION_ATOL``, the independent residual above ``10 rtol``, the contact fraction off by
-more than ``CONTACT_ATOL``, or more than ``MATVEC_FACTOR`` times the stored operator products
-plus ``MATVEC_SLACK``. A case missing from the file fails too. A known failure that now
-converges passes (and is reported). Regenerate the file with
+A case fails on what is a property of the method, the same on every machine: a new
+ConvergenceError, friction off its stored value by more than ``FRICTION_RTOL`` (relative) plus
+``FRICTION_ATOL``, the independent residual above ``10 rtol`` (a broken ``rtol``), or the contact
+fraction off by more than ``CONTACT_ATOL``. A case missing from the file fails too. A known
+failure that now converges passes (and is reported). Regenerate the file with
 ``VISCOBEM_STRESS_UPDATE=1 pytest -m stress`` after a deliberate change, and say why in the
 commit.
 
-Path sensitivity. Some hard cases take a different active-set path when their inputs change in
-the last bits (another machine's FFT round-off does that): their products then vary by a factor
-of several while their answer does not. Regenerating therefore also solves every case with
-``PERTURBATIONS`` copies of its heights perturbed by 1e-14 relative (seeded), and stores the
-largest product count seen (``matvecs_max``); a case's products are compared with that envelope.
-The perturbations do not find every path another machine's round-off takes (a case can take
-several times its stored envelope there), so regenerating with the same code keeps the envelope the
-stored file had: run on each kind of machine, it holds the most seen on any.
-So that no regression hides in the envelopes, the whole suite's products are compared too
-(:func:`test_total_products`, against the stored nominal total within ``TOTAL_FACTOR``).
+Cost is information, not a gate. Operator products follow the active-set path, and some hard
+cases take another path when their inputs change in the last bits, which another processor's
+FFT and BLAS round-off does: their products then vary by a factor of several while their answer
+does not (``docs/theory.md`` §4.2 names the mechanism). The stored products (``matvecs``, and
+``matvecs_max``, the most of ``PERTURBATIONS`` solves with the heights perturbed by
+``PERTURBATION`` relative) are compared with this run's in the summary: the total and its ratio
+to the stored total, and the cases beyond ``COST_NOTE`` times their stored envelope, printed and
+written to the report; ``viscobem bench periodic`` and ``viscobem bench curve`` measure cost
+against references run beside it. The suite must pass as it stands on
+stored expectations made on any machine; ``VISCOBEM_PERTURB_HEIGHTS=1e-12 pytest -m stress``
+(``tests/conftest.py``) runs it as another machine would, and ``taskset -c 0`` on one core.
 
 Staleness. The file records what it was made with: the package version, a digest of the
 solver's source and the solver's default options. When any of them differs from the running
@@ -61,6 +61,7 @@ import pytest
 
 import bem
 from bem.errors import ConvergenceError
+from tests.conftest import perturbed
 from validation.references import periodic_exact as ref
 
 pytestmark = pytest.mark.stress
@@ -74,9 +75,8 @@ UPDATE = os.environ.get("VISCOBEM_STRESS_UPDATE") == "1"
 STORED = {} if UPDATE or not EXPECTED_PATH.exists() else json.loads(EXPECTED_PATH.read_text())
 EXPECTED = STORED.get("cases", {})
 PERTURBATIONS = 2  # perturbed copies solved per case when regenerating (path sensitivity)
-# the whole suite's products: measured spread of the nominal total under perturbed inputs is a few
-# per cent (the path-sensitive cases move it); 1.15 flags a broad rise of 15 % or more
-TOTAL_FACTOR = 1.15
+PERTURBATION = 1e-12  # their relative size: above FFT round-off (1e-16..1e-15), as another machine's
+COST_NOTE = 2.0  # products beyond this factor of the stored envelope are listed in the summary
 SOLVER_SOURCES = (
     "bem/contact/*.py",
     "bem/halfspace/periodic.py",
@@ -90,7 +90,6 @@ SOLVER_SOURCES = (
 # factor 100 over that, and a material 2 % off moves the friction by far more (checked).
 FRICTION_RTOL, FRICTION_ATOL = 1e-5, 1e-12
 CONTACT_ATOL = 0.01  # cells at the contact edge may flip with the iterate's path: 1 % of the cell
-MATVEC_FACTOR, MATVEC_SLACK = 1.5, 20  # operator products: a 50 % rise is a regression
 CURRENT = {"id": None}
 
 
@@ -184,10 +183,7 @@ def _compare(record):
     if abs(record["contact_fraction"] - exp["contact_fraction"]) > CONTACT_ATOL:
         bad.append(f"contact fraction {record['contact_fraction']:.4f}, stored {exp['contact_fraction']:.4f}")
     envelope = max(exp["matvecs"], exp.get("matvecs_max", 0))
-    if record["matvecs"] > MATVEC_FACTOR * envelope + MATVEC_SLACK:
-        bad.append(
-            f"{record['matvecs']} operator products, stored {exp['matvecs']} (at most {envelope} when perturbed)"
-        )
+    record["stored_matvecs"], record["stored_envelope"] = exp["matvecs"], envelope
     assert not bad, f"{CURRENT['id']} degraded: " + "; ".join(bad) + (f" [{STALE}]" if STALE else "")
 
 
@@ -277,13 +273,10 @@ def run_case(case, surface, material, xi, level, *, rtol=RTOL):
 
 def _perturbed_products(surface, material, **kw):
     """The most operator products among ``PERTURBATIONS`` solves of ``surface`` with its heights
-    perturbed by 1e-14 relative (seeded): the envelope of the case's path sensitivity."""
+    perturbed by ``PERTURBATION`` relative (seeded): the envelope of the case's path sensitivity."""
     most = 0
     for k in range(PERTURBATIONS):
-        rng = np.random.default_rng(k)
-        h = surface.heights * (1.0 + 1e-14 * rng.standard_normal(surface.heights.shape))
-        perturbed = bem.surfaces.from_heights(h, surface.length)
-        res = bem.solve(perturbed, material, raise_on_failure=False, **kw)
+        res = bem.solve(perturbed(surface, PERTURBATION, seed=k), material, raise_on_failure=False, **kw)
         most = max(most, res.matvecs)
     return most
 
@@ -516,21 +509,6 @@ def test_curve_isolated_sphere(speed):
 
 
 # ---------------------------------------------------------------- the whole suite
-def test_total_products():
-    """The suite's products in all, against the stored total: a broad rise that the per-case
-    envelopes let through. Runs last; skipped when only part of the suite ran."""
-    if UPDATE:
-        pytest.skip("regenerating")
-    ran = {r["id"]: r for r in RECORDS}
-    if set(ran) != set(EXPECTED):
-        pytest.skip(f"{len(ran)} of {len(EXPECTED)} cases ran")
-    total = sum(r.get("matvecs", 0) for r in ran.values())
-    stored = STORED["total_matvecs"]
-    assert total <= TOTAL_FACTOR * stored, f"{total} operator products in all, stored {stored}" + (
-        f" [{STALE}]" if STALE else ""
-    )
-
-
 def test_expectations_are_current():
     """Says when the stored expectations are stale (a warning, never a failure: the per-case
     checks decide); fails only if the file does not say what it was made with."""
@@ -564,8 +542,10 @@ def _summary(tmp_path_factory):
                 "median_matvecs": float(np.median(mv)),
                 "max_matvecs": int(max(mv)),
             }
+    cost = _cost(RECORDS)
     summary = {
         "cases": len(RECORDS),
+        "cost_against_stored": cost,
         "converged": len(converged),
         "raised": len(raised),
         "matvecs_by_max_phase": bands,
@@ -588,6 +568,33 @@ def _summary(tmp_path_factory):
         f"\nstress summary: {len(RECORDS)} cases, {len(converged)} converged, {len(raised)} raised; "
         f"written to {path} and {path.with_suffix('.csv')}"
     )
+    if cost["stored_products"]:
+        print(
+            f"operator products (information, not a gate): {cost['products']} in the {cost['cases']} cases "
+            f"with stored counts, stored {cost['stored_products']} (ratio {cost['ratio']:.3f}); "
+            f"{len(cost['beyond'])} beyond {COST_NOTE:g}x their stored envelope"
+            + "".join(
+                f"\n  {b['id']}: {b['matvecs']} products, envelope {b['stored_envelope']}" for b in cost["beyond"]
+            )
+        )
+
+
+def _cost(records):
+    """This run's operator products against the stored ones, over the cases that have both."""
+    both = [r for r in records if "stored_matvecs" in r and r.get("matvecs") is not None]
+    products, stored = sum(r["matvecs"] for r in both), sum(r["stored_matvecs"] for r in both)
+    beyond = [
+        {k: r[k] for k in ("id", "matvecs", "stored_matvecs", "stored_envelope")}
+        for r in both
+        if r["matvecs"] > COST_NOTE * r["stored_envelope"]
+    ]
+    return {
+        "cases": len(both),
+        "products": products,
+        "stored_products": stored,
+        "ratio": products / stored if stored else None,
+        "beyond": beyond,
+    }
 
 
 def _write_expected():
@@ -631,7 +638,7 @@ def _write_expected():
                 f"{platform.python_version()}, numpy {np.__version__}). Each case must end as stored "
                 "(a stored ConvergenceError may now converge) with its checks within the tolerances "
                 "stated in tests/bem/test_stress.py; matvecs_max is the most products of "
-                f"{PERTURBATIONS} solves with the heights perturbed by 1e-14 (path sensitivity), and of "
+                f"{PERTURBATIONS} solves with the heights perturbed by {PERTURBATION:g} (path sensitivity), and of "
                 "the stored solves where the file was regenerated with the same code on another machine.",
                 "made_with": made_with(),
                 "total_matvecs": sum(c.get("matvecs", 0) for c in cases.values()),
