@@ -136,7 +136,20 @@ def _optional_notes(args, names):
     return vtk
 
 
+def case_list():
+    """The validation cases, one line each: name, title, and what is compared with what."""
+    from validation.cases import CASES
+    from validation.report import compared
+
+    width = max(map(len, CASES))
+    lines = [f"  {name:<{width}}  {c.title}\n  {'':<{width}}  ({compared(vars(c))})" for name, c in CASES.items()]
+    return "validation cases (--case NAME; --quick runs each at coarse settings):\n" + "\n".join(lines) + "\n"
+
+
 def _cmd_validate(args):
+    if args.list:
+        print(case_list(), end="")
+        return 0
     from validation.report import write_reports
     from validation.runner import run_cases, select
 
@@ -231,7 +244,7 @@ def _update_baselines(record, baseline_path, out):
     if record["summary"]["failed"]:
         print("  baselines NOT updated: some cases fail their tolerances")
         return
-    command = "viscobem validate --quick --update-baselines --out " + str(out)
+    command = "viscobem validate --quick --update-baselines"  # the output folder does not change a value
     print(f"  baselines written to {baselines.write(record, baseline_path, command)}")
 
 
@@ -324,7 +337,10 @@ def build_parser():
     bench.set_defaults(func=_cmd_bench)
     val = sub.add_parser("validate", help="run validation cases (BEM vs FEM vs exact) and write reports")
     val.add_argument("--quick", action="store_true", help="coarse settings (the CI regression set)")
-    val.add_argument("--case", action="append", metavar="NAME", help="run only this case (repeatable)")
+    val.add_argument(
+        "--case", action="append", metavar="NAME", help="run only this case (repeatable; listed below and by --list)"
+    )
+    val.add_argument("--list", action="store_true", help="list the validation cases and exit")
     val.add_argument("--out", default="validation-out", help="output folder (default: validation-out)")
     val.add_argument("--no-vtk", action="store_true", help="do not write VTK files")
     val.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -341,6 +357,8 @@ def build_parser():
         "report which checks catch them (report.json['sensitivity'])",
     )
     val.set_defaults(func=_cmd_validate)
+    # the case list is built only when help is shown: importing the cases costs seconds at start-up
+    val.format_help = lambda: argparse.ArgumentParser.format_help(val) + "\n" + case_list()
     return parser
 
 
