@@ -4,6 +4,7 @@
     python docs/timings.py run_seed tests   # measure only these (the others are kept)
     python docs/timings.py --render         # no measuring: rewrite the stated figures only
     python docs/timings.py --import KEY SECONDS DATE SOURCE   # a run measured elsewhere
+    python docs/timings.py --record KEY SECONDS SOURCE        # the same, dated now, stated figures kept
 
 Each run of :data:`RUNS` is a command, started from the repository root with this Python's
 environment; it is timed (wall clock, and the CPU time and peak resident memory of the
@@ -11,7 +12,9 @@ process and its children), the load average is sampled every few seconds while i
 the size of its output folder is measured. ``docs/timings.json`` keeps one entry per run, with
 the machine (cores, CPU, memory), the date and the commit. A run measured elsewhere (a report,
 a CI log) can be recorded with ``--import`` and its source; it has no CPU time or load average,
-and the next measurement of that key replaces it.
+and the next measurement of that key replaces it. ``--record`` stores such a run without restating
+the figures: CI records the runs it makes as it goes (``.ci/run``), so that the documentation test
+of its later step compares what the pages state with what this code just took.
 
 A stated figure is a Markdown link whose target is this record's page and key,
 ``[75 s on 2 cores](timings.md#validate_quick)`` (``docs/timings.md#...`` from the README):
@@ -322,6 +325,13 @@ def imported(key, seconds, date, source):
 def main(argv=None):
     args = list(sys.argv[1:] if argv is None else argv)
     record = load_record()
+    if args[:1] == ["--record"]:  # keep the stated figures: the docs test compares them with this run
+        key, seconds, source = args[1:4]
+        now = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+        record.setdefault("runs", {})[key] = imported(key, seconds, now, source)
+        save_record(record)
+        PAGE.write_text(page(record), encoding="utf-8")  # the record's own page, not the figures stated
+        return
     if args[:1] == ["--import"]:
         key, seconds, date, source = args[1:5]
         record.setdefault("runs", {})[key] = imported(key, seconds, date, source)

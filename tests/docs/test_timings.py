@@ -121,3 +121,19 @@ def test_time_text(seconds, text):
     assert timings.time_text(seconds) == text
     value, kind = timings.stated(text)
     assert kind == "time" and abs(value / seconds - 1) < 0.06
+
+
+def test_a_recorded_ci_run_that_is_slower_than_stated_fails_the_drift_check(tmp_path, monkeypatch):
+    """CI records the runs it makes (``--record``) and keeps the stated figures, so that a stated
+    time 2x off what the code just took fails ``test_every_stated_figure_is_within_2x_of_the_record``."""
+    record_path, page_path = tmp_path / "timings.json", tmp_path / "timings.md"
+    record_path.write_text(timings.RECORD.read_text(encoding="utf-8"), encoding="utf-8")
+    monkeypatch.setattr(timings, "RECORD", record_path)
+    monkeypatch.setattr(timings, "PAGE", page_path)
+    stated = next(text for _, text, key in claims() if key == "validate_quick")
+    entry = RECORD["runs"]["validate_quick"]
+    timings.main(["--record", "validate_quick", str(3 * entry["wall_s"]), "CI: the wall clock of .ci/run step 4"])
+    new = json.loads(record_path.read_text(encoding="utf-8"))
+    assert new["runs"]["validate_quick"]["wall_s"] == 3 * entry["wall_s"]
+    assert drift(stated, new["runs"]["validate_quick"]) > 2.0
+    assert page_path.read_text(encoding="utf-8") == timings.page(new)  # the record's page follows it
