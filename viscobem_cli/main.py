@@ -324,13 +324,15 @@ def build_parser():
             "materials",
             "measured",
             "accuracy",
+            "friction_map",
         ],
         help="all (default: every solver, scaling, skipping), one detailed benchmark "
         "(fem_convergence: the FEM's observed orders in mesh size, domain size and time step), "
         "import (import time of bem against numpy + scipy), materials (Prony fits "
         "and master curves against pyvisco), measured (boundary treatments of measured scans: "
-        "patches cut from known surfaces), or accuracy (the error estimate's cost and its "
-        "agreement with the twice-finer solve)",
+        "patches cut from known surfaces), accuracy (the error estimate's cost and its "
+        "agreement with the twice-finer solve), or friction_map (friction over speed and temperature from "
+        "one curve, against direct solves and one curve's cost)",
     )
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
