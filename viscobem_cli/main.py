@@ -53,14 +53,16 @@ def _cmd_run(args):
     for text in scene.warnings:
         print(f"  WARNING: {text}")
     record = run_scene(scene, args.out, progress=not args.no_progress, scheduler=args.scheduler, workers=args.workers)
-    if record["resumed_points"]:
+    if record.get("resumed_points"):
         print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
     if "temperature_sweep" in record:  # a sweep per temperature: the table of mu(v, T) first
         from .run.temperatures import summary
 
         print(summary(record))
-        print(f"  at {record['friction_curve_temperature']:g} K:")
-    _print_curve(record["friction_curve"], record["surface"].get("hertz_radius_relaxed", [None])[0])
+    if "friction_curve" in record:  # a superposed study has its map only
+        if "temperature_sweep" in record:
+            print(f"  at {record['friction_curve_temperature']:g} K:")
+        _print_curve(record["friction_curve"], record["surface"].get("hertz_radius_relaxed", [None])[0])
     for text in record["warnings"][len(scene.warnings) :]:
         print(f"  WARNING: {text}")
     print(f"  total {record['stages']['total']:.1f} s; files: {', '.join(record['files'])}")
