@@ -12,14 +12,13 @@ direct friction curve (the material at that temperature) at several temperatures
 a ratio of at most 2.5 and a difference of at most 1 % at every point compared.
 """
 
-import argparse
 import sys
 import time
 
 import numpy as np
 
 import bem
-from viscobem_bench.periodic.report import finish, table
+from viscobem_bench.periodic.report import finish, quick_out_main, table
 
 SPEEDS = np.logspace(-6, 0, 25)
 TEMPERATURES = np.linspace(253.15, 353.15, 13)
@@ -109,12 +108,7 @@ def report(result, markdown=False):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m viscobem_bench.friction_map", description=__doc__.split("\n")[0])
-    parser.add_argument("--quick", action="store_true", help=f"a {QUICK_N}-point profile (smoke test)")
-    parser.add_argument("--out", default=None, help="directory for friction_map.json and .md")
-    args = parser.parse_args(argv)
-    run(args.quick, args.out)
-    return 0
+    return quick_out_main("friction_map", __doc__, run, f"a {QUICK_N}-point profile (smoke test)", argv)
 
 
 if __name__ == "__main__":
