@@ -85,14 +85,20 @@ def basis_sentence(record):
     if not judged:
         return "No check is judged against a tolerance."
     factors = [f for f in map(margin_factor, checks) if f is not None]
-    text = (
-        f"{kinds.count('margin')} of the {judged} judged checks use a regression margin: a tolerance "
-        + (f"{min(factors):g}-{max(factors):g}x (median {statistics.median(factors):g}x) " if factors else "")
-        + "the error this code was measured at when it was set, so a failure says that the code or its input "
-        "changed, not that the method is that inaccurate; "
+    bound = (
         f"{kinds.count('bound')} use a bound from the discretisation or the physics (one cell, round-off, an "
         "error estimate). "
     )
+    if kinds.count("margin"):
+        text = (
+            f"{kinds.count('margin')} of the {judged} judged checks use a regression margin: a tolerance "
+            + (f"{min(factors):g}-{max(factors):g}x (median {statistics.median(factors):g}x) " if factors else "")
+            + "the error this code was measured at when it was set, so a failure says that the code or its input "
+            "changed, not that the method is that inaccurate; "
+            + bound
+        )
+    else:
+        text = f"None of the {judged} judged checks uses a regression margin: all " + bound
     if kinds.count("info"):
         text += (
             f"{kinds.count('info')} rows are info: reported and kept in the baselines, not judged, because the "

@@ -38,6 +38,8 @@ def test_the_basis_of_a_tolerance_is_read_from_its_reason():
     text = explain.basis_sentence(record)
     assert text.startswith("2 of the 3 judged checks use a regression margin") and "2-3x (median 2.5x)" in text
     assert "1 use a bound" in text and "1 rows are info" in text
+    bounds_only = {"cases": {"a": {"checks": [check(why="one cell"), check(why="round-off")]}}}
+    assert explain.basis_sentence(bounds_only).startswith("None of the 2 judged checks uses a regression margin: all 2")
 
 
 def test_the_worst_check_is_a_failure_first_then_the_closest_to_its_tolerance():

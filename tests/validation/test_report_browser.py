@@ -174,6 +174,6 @@ def test_the_first_screen_answers(page, report, tmp_path):
         assert name == case and visible, f"{case}: its row is not on the first screen"
         assert status == {"passed": "PASS", "failed": "FAIL", "error": "ERROR"}[c["status"]]
         assert " / " in ratio or c["status"] == "error", ratio
-    assert "regression margin" in screen["basis"]
+    assert "regression margin" in screen["basis"] and "judged checks" in screen["basis"]
     assert screen["plotTop"] is None or screen["plotTop"] > screen["tableBottom"]
     page.save_screenshot(str(shots(tmp_path) / "first_screen.png"))
