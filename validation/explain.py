@@ -94,8 +94,7 @@ def basis_sentence(record):
             f"{kinds.count('margin')} of the {judged} judged checks use a regression margin: a tolerance "
             + (f"{min(factors):g}-{max(factors):g}x (median {statistics.median(factors):g}x) " if factors else "")
             + "the error this code was measured at when it was set, so a failure says that the code or its input "
-            "changed, not that the method is that inaccurate; "
-            + bound
+            "changed, not that the method is that inaccurate; " + bound
         )
     else:
         text = f"None of the {judged} judged checks uses a regression margin: all " + bound
