@@ -39,6 +39,8 @@ _LAZY = {
     "friction_curve": ("bem.sweep", "friction_curve"),
     "SlidingResult": ("bem.result", "SlidingResult"),
     "FrictionCurve": ("bem.sweep", "FrictionCurve"),
+    "friction_map": ("bem.superposition", "friction_map"),
+    "FrictionMap": ("bem.superposition", "FrictionMap"),
     "InputError": ("bem.errors", "InputError"),
     "ConvergenceError": ("bem.errors", "ConvergenceError"),
     "surfaces": ("bem.surfaces", None),

@@ -23,7 +23,7 @@ from .checks import check_positive, show
 from .contact.options import MAXITER, RTOL
 from .errors import ConvergenceError, InputError
 
-__all__ = ["FrictionCurve", "friction_curve", "sweep", "check_sweep"]
+__all__ = ["FrictionCurve", "friction_curve", "curve_from", "sweep", "check_sweep"]
 
 log = logging.getLogger(__name__)
 
@@ -250,11 +250,14 @@ def friction_curve(
                 error_estimate=error_estimate,
                 contact_options=contact_options,
             )
-            curves.append(_curve(speeds, results[0], messages[0], f_n))
+            curves.append(curve_from(speeds, results[0], messages[0], f_n))
     return curves if several else curves[0]
 
 
-def _curve(speeds, results, messages, load):
+def curve_from(speeds, results, messages, load):
+    """The :class:`FrictionCurve` of the solves ``results`` at ``speeds`` (None where one failed,
+    ``messages`` saying why), with their error estimates and gathered warnings."""
+
     def column(attr):
         return np.array([getattr(r, attr) if r is not None else np.nan for r in results], dtype=float)
 

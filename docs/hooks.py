@@ -1,6 +1,13 @@
-"""MkDocs hooks: pages generated from the code and from measured data at build time.
+"""MkDocs hooks: pages generated from the code and from measured data.
 
-A page holds a marker comment where a generated block goes:
+A page holds a generated block between ``<!-- generated:NAME -->`` and ``<!-- end generated:NAME -->``.
+Blocks made from the code alone (scene keys, extras, validation cases, solver settings, the
+gallery's scripts, the seed figures' numbers) are committed between their markers, so that the
+pages read right in the repository and on the code host; ``python docs/hooks.py --write``
+regenerates them and ``tests/docs`` fails when the committed text drifts from the code. Blocks
+made from a run (the latest validation report, the benchmarks' records) hold a sentence and a
+link in the repository and are filled when the site is built; the gallery gains its scripts'
+printed output and figures there. The blocks:
 
 - ``<!-- generated:scene-keys -->``: every scene key the parser accepts
   (``viscobem_cli.scene.SCHEMA``), with the type, unit, default, range and meaning from the
@@ -9,6 +16,8 @@ A page holds a marker comment where a generated block goes:
   measured run time and output size from ``docs/timings.json`` (``docs/timings.py``).
 - ``<!-- generated:extras -->``: the pip extras of ``pyproject.toml`` with what each adds
   (``viscobem_cli.catalog.EXTRA_PURPOSE``).
+- ``<!-- generated:validation-cases -->``: one row per validation case (``validation.cases.CASES``):
+  its title, the solvers compared and the reference they are compared against.
 - ``<!-- generated:validation -->``: the latest validation report (``docs/validation/``:
   ``report.json`` rendered by ``validation.report``, else ``report.md``) and the quick set's
   stored baselines (``validation/baselines/quick.json``).
@@ -294,12 +303,24 @@ def _validation():
             f"From `validation/baselines/quick.json`. Comparison rule: {data.get('comparison', {}).get('rule', '')}\n"
         )
         prov = data.get("provenance", {})
-        out.append("Made by `" + str(prov.get("command", "")) + f"` on {prov.get('date', '')}.\n")
+        command = re.sub(r"--out \S+", "--out DIR", str(prov.get("command", "")))  # not the machine's folder
+        out.append(f"Made by `{command}` on {prov.get('date', '')}.\n")
         for case, values in sorted(data.get("values", {}).items()):
             rows = [{"metric": k, "value": v} for k, v in values.items()]
             out.append(f'??? note "{case} ({len(rows)} values)"\n')
             out.append("\n".join("    " + line for line in _table(rows).splitlines()) + "\n")
     return "\n".join(out)
+
+
+def _validation_cases():
+    """One row per validation case, from the registry: what it compares with what."""
+    from validation.cases import CASES
+
+    rows = ["| case | what it checks | solvers under test | against |", "|---|---|---|---|"]
+    for name, case in CASES.items():
+        tested = ", ".join(s for s in case.solvers if s != case.reference)
+        rows.append(f"| `{name}` | {table_cell(case.description)} | {tested} | {table_cell(case.reference)} |")
+    return "\n".join(rows) + "\n"
 
 
 def _demote(markdown):
@@ -368,7 +389,9 @@ def _gallery_files(config, files):
             _gallery[script.stem] = (run.stdout, site_path)
 
 
-def _gallery_markdown():
+def _gallery_markdown(with_runs=True):
+    """Each example's title, text, command and code; with ``with_runs``, its printed output and
+    figure from running it at build time (the committed page has a line saying where they are)."""
     out = []
     for script in _scripts():
         stdout, figure = _gallery.get(script.stem, ("", None))
@@ -378,6 +401,9 @@ def _gallery_markdown():
         out.append(f"## {title.rstrip('.')}\n\n{rest.strip()}\n")
         out.append(f"`python examples/{script.name} [OUTDIR]`\n")
         out.append(f'```python title="examples/{script.name}"\n{source.rstrip()}\n```\n')
+        if not with_runs:
+            out.append("Running it prints its numbers and draws its figure; the built site shows both.\n")
+            continue
         if stdout:
             out.append(f"Output:\n\n```text\n{stdout.rstrip()}\n```\n")
         if figure:
@@ -476,22 +502,83 @@ def _solver_settings():
     return "\n".join(out)
 
 
+# blocks made from the code alone: committed between their markers (``--write``), checked by tests/docs
+COMMITTED = {
+    "scene-keys": lambda: _scene_keys() + "\n## Built-in scenes\n\n" + _builtin_scenes(),
+    "extras": _extras,
+    "validation-cases": _validation_cases,
+    "solver-settings": _solver_settings,
+    "seed-figures": lambda: _record(DOCS / "figures" / "seed_figures_summary.json", "Numbers behind the figures"),
+    "gallery": lambda: _gallery_markdown(with_runs=False),
+}
+# blocks made from runs, filled at build time; in the repository, a sentence and a link
+BUILT = {
+    "validation": (
+        _validation,
+        "The built site (`mkdocs build`, the docs extra) shows the latest full report here, from the run CI "
+        "has just made; `viscobem validate --out DIR` writes the same report as `DIR/report.html`.",
+    ),
+    "benchmarks": (
+        _benchmarks,
+        "The built site (`mkdocs build`, the docs extra) shows every record here as tables; the records "
+        "themselves are the JSON files in [`docs/benchmarks/`](benchmarks/periodic.json).",
+    ),
+    "gallery": (_gallery_markdown, None),
+}
+_MACHINE_PATH = re.compile(r"(?<![\w:/.~])/(?:work|home|tmp|root|Users|private|var|opt|mnt)/[^\s`)|\"',;]*")
+
+
+def public(text):
+    """``text`` without the absolute folders of the machine that made a record (a benchmark's
+    source checkout, a run's output folder): each is cut to its last component."""
+    return _MACHINE_PATH.sub(lambda m: m.group(0).rstrip("/").rsplit("/", 1)[-1], text)
+
+
+_BLOCK = re.compile(r"(<!-- generated:([\w-]+) -->\n)(.*?)(<!-- end generated:\2 -->)", re.DOTALL)
+
+
+def committed_text(name):
+    """The text committed between the markers of block ``name``."""
+    if name in COMMITTED:
+        return public(COMMITTED[name]()).rstrip("\n") + "\n"
+    return BUILT[name][1] + "\n"
+
+
+def rewrite(markdown, render):
+    """``markdown`` with the text between every pair of markers replaced by ``render(name)``."""
+
+    def block(match):
+        return match.group(1) + render(match.group(2)) + match.group(4)
+
+    return _BLOCK.sub(block, markdown)
+
+
 def on_page_markdown(markdown, page, config, files):
     markdown = _API.sub(_defining_path, markdown)
-    blocks = {
-        "<!-- generated:scene-keys -->": lambda: (
-            _scene_keys() + "\n## Built-in scenes\n\n" + _builtin_scenes()
-        ),
-        "<!-- generated:validation -->": _validation,
-        "<!-- generated:extras -->": _extras,
-        "<!-- generated:benchmarks -->": _benchmarks,
-        "<!-- generated:gallery -->": _gallery_markdown,
-        "<!-- generated:solver-settings -->": _solver_settings,
-        "<!-- generated:seed-figures -->": lambda: _record(
-            DOCS / "figures" / "seed_figures_summary.json", "Numbers behind the figures"
-        ),
-    }
-    for marker, render in blocks.items():
-        if marker in markdown:
-            markdown = markdown.replace(marker, render())
-    return markdown
+
+    def built(name):
+        return public(BUILT[name][0]()) if name in BUILT else committed_text(name)
+
+    return rewrite(markdown, built)
+
+
+def main(argv=None):
+    """``python docs/hooks.py --write``: regenerate the committed blocks of every page;
+    ``--check``: exit 1 naming the pages whose committed blocks differ from the code."""
+    args = sys.argv[1:] if argv is None else argv
+    stale = []
+    for page in sorted(DOCS.rglob("*.md")):
+        text = page.read_text(encoding="utf-8")
+        new = rewrite(text, committed_text)
+        if new != text:
+            stale.append(page.relative_to(ROOT).as_posix())
+            if "--write" in args:
+                page.write_text(new, encoding="utf-8")
+    if stale and "--write" not in args:
+        print("stale generated blocks (python docs/hooks.py --write): " + ", ".join(stale), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

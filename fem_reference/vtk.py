@@ -26,9 +26,11 @@ folded), the same with the prefix ``input_`` for the material as given, ``dimens
 (``V max(lambda_k) / a0``, retardation length over the relaxed Hertz half-width), the friction in
 both forms, ``friction_dissipation`` (field dissipation over ``P V``, the form the validation harness
 compares) and ``friction_moment`` (``x_bar / R``, the moment of the nodal forces), ``friction`` (the
-dissipation form; the moment form at rest), ``approach`` (m), ``units`` (a note) and the provenance
-of :func:`provenance`: ``viscobem_version``, ``solver``, ``solver_settings`` (JSON: mesh, grading,
-element size, domain, linear solver) and ``units_json`` (the unit of every array, JSON).
+dissipation form; the moment form at rest), ``approach`` (m), the provenance of :func:`provenance`:
+``viscobem_version``, ``solver``, ``solver_settings`` (JSON: mesh, grading, element size, domain, linear
+solver), and, as in the BEM's files, ``units`` (JSON: the unit of every point, cell and field array of
+the dataset by name, ``"1"`` for a dimensionless one, ``"text"`` for a string) and ``conventions`` (the
+sign conventions in words).
 
 ``write_indentation(path, ...)`` writes the creep indentation as a ``.pvd`` time series (time in s) of
 ``.vtm`` files with the same names, in the ``(r, z)`` plane (x = r, y = z; the tensors' ``ZZ`` is the
@@ -36,7 +38,7 @@ hoop component ``theta theta``): ``displacement``, ``stress``, ``strain``, ``von
 ``hydrostatic_pressure``, ``viscous_strain_tau=<tau>s`` and ``dissipation`` (W/m^3) in the block (the
 stress with the mixed solve's own pressure, :meth:`~fem_reference.axisymmetric.AxisymmetricStepper.pressure`);
 ``pressure``, ``gap``, ``contact``, ``depression`` on the interface; field data ``time``, ``load``
-(N), ``radius``, the material and ``units``.
+(N), ``radius``, the material, ``units`` and ``conventions``.
 """
 
 from __future__ import annotations
@@ -48,13 +50,36 @@ import numpy as np
 from . import fields as derived
 from .rolling_inputs import hertz_half_width
 
-__all__ = ["write_fields", "write_indentation", "volume_grid", "interface_points", "metadata", "UNITS", "COMPONENTS"]
+__all__ = [
+    "write_fields",
+    "write_indentation",
+    "volume_grid",
+    "interface_points",
+    "metadata",
+    "units",
+    "UNITS",
+    "CONVENTIONS",
+    "COMPONENTS",
+]
 
-UNITS = (
-    "SI units: lengths and displacements m, stresses and pressures Pa, speed m/s, load N/m (per unit "
-    "length in z), times s, dissipation W/m^3; strains dimensionless (tensor components, not engineering "
-    "shear); pressure and hydrostatic_pressure positive in compression; the cylinder moves in +x"
+CONVENTIONS = (
+    "SI units; strains are tensor components, not engineering shear; pressure and hydrostatic_pressure "
+    "positive in compression; depression positive into the solid; the cylinder moves in +x"
 )
+# The unit of every array the FEM writes, by name (a prefix ``input_`` keeps its unit); the load is
+# a force per unit length in z for plane-strain rolling and a force for axisymmetric indentation.
+UNITS = {
+    **dict.fromkeys(("stress", "stress_nodal", "von_mises", "von_mises_nodal", "pressure"), "Pa"),
+    **dict.fromkeys(("hydrostatic_pressure", "hydrostatic_pressure_nodal", "E0", "E_inf", "prony_moduli"), "Pa"),
+    **dict.fromkeys(("displacement", "gap", "depression", "radius", "approach"), "m"),
+    **dict.fromkeys(("strain", "contact", "nu", "dimensionless_speed"), "1"),
+    **dict.fromkeys(("friction", "friction_dissipation", "friction_moment"), "1"),
+    **dict.fromkeys(("relaxation_times", "creep_times", "time"), "s"),
+    "dissipation": "W/m^3",
+    "speed": "m/s",
+    "load": "N/m",
+}
+_VISCOUS = "viscous_strain_tau="
 COMPONENTS = ("XX", "XY", "XZ", "YX", "YY", "YZ", "ZX", "ZY", "ZZ")
 
 
@@ -121,9 +146,8 @@ def _add_nodal(dataset, stress, basis):
 
 
 def provenance(solver, settings):
-    """Field data naming what made a file: ``viscobem_version``, ``solver``, ``solver_settings``
-    (JSON: mesh, grading, element size, domain, linear solver, ...) and ``units_json``, the
-    unit of every array by name (JSON)."""
+    """Field data naming what made a file: ``viscobem_version``, ``solver`` and ``solver_settings``
+    (JSON: mesh, grading, element size, domain, linear solver, ...)."""
     import json
     from importlib.metadata import PackageNotFoundError, version
 
@@ -131,17 +155,27 @@ def provenance(solver, settings):
         installed = version("viscobem")
     except PackageNotFoundError:
         installed = "unknown"
-    units = {k: "Pa" for k in ("stress", "stress_nodal", "von_mises", "von_mises_nodal", "pressure", "E0", "E_inf")}
-    units.update(hydrostatic_pressure="Pa", hydrostatic_pressure_nodal="Pa", prony_moduli="Pa", dissipation="W/m^3")
-    units.update(displacement="m", gap="m", depression="m", radius="m", approach="m", strain="1", contact="1")
-    units.update(speed="m/s", relaxation_times="s", creep_times="s", time="s", nu="1", friction="1")
-    units.update(load="N/m (rolling), N (indentation)", dimensionless_speed="1", viscous_strain_tau="1")
     return {
         "viscobem_version": [installed],
         "solver": [solver],
         "solver_settings": [json.dumps(settings, sort_keys=True, default=str)],
-        "units_json": [json.dumps(units, sort_keys=True)],
     }
+
+
+def units(dataset, load="N/m"):
+    """The ``units`` field data of ``dataset``: JSON giving the unit of each of its point, cell and
+    field arrays by name, the same object the BEM's files carry, so one reader serves both.
+    ``load`` is the unit of the load (N/m in plane strain, N for axisymmetric indentation)."""
+    import json
+
+    table = {}
+    for name in (*dataset.point_data.keys(), *dataset.cell_data.keys(), *dataset.field_data.keys()):
+        if name in ("units", "conventions"):
+            continue
+        base = name.removeprefix("input_")
+        unit = "1" if base.startswith(_VISCOUS) else UNITS.get(base, "text")
+        table[name] = load if base == "load" else unit
+    return [json.dumps(table, sort_keys=True)]
 
 
 def interface_points(result):
@@ -190,7 +224,7 @@ def metadata(result):
         friction_dissipation=[diss],
         friction_moment=[result.friction],
         approach=[result.approach],
-        units=[UNITS],
+        conventions=[CONVENTIONS],
         **provenance(
             "fem_reference.rolling_cylinder (scikit-fem: plane strain, steady Eulerian Prony terms, Q2 displacement / discontinuous P1 pressure)",
             {
@@ -214,9 +248,10 @@ def metadata(result):
     )
 
 
-def _add_field_data(dataset, meta):
+def _add_field_data(dataset, meta, load="N/m"):
     for k, v in meta.items():
         dataset.field_data[k] = v
+    dataset.field_data["units"] = units(dataset, load)
 
 
 def write_fields(path, fields, result=None):
@@ -226,7 +261,7 @@ def write_fields(path, fields, result=None):
 
     path = Path(path)
     vol = volume_grid(fields, None if result is None else result.material)
-    meta = metadata(result) if result is not None else {"units": [UNITS]}
+    meta = metadata(result) if result is not None else {"conventions": [CONVENTIONS]}
     _add_field_data(vol, meta)
     if path.suffix == ".vtm":
         if result is None:
@@ -285,7 +320,7 @@ def _indentation_snapshot(snap, ops, material, radius, r, top, meta):
     iface.point_data["contact"] = (np.asarray(snap["pressure"]) > 0).astype(np.uint8)
     iface.point_data["depression"] = w
     for ds in (vol, iface):
-        _add_field_data(ds, dict(meta, time=[snap["t"]], approach=[snap["approach"]]))
+        _add_field_data(ds, dict(meta, time=[snap["t"]], approach=[snap["approach"]]), load="N")
     return pv.MultiBlock({"volume": vol, "interface": iface})
 
 
@@ -301,7 +336,7 @@ def write_indentation(path, snapshots, ops, material, radius, load, r):
     path.parent.mkdir(parents=True, exist_ok=True)
     top = top_surface(ops.basis, axisymmetric=True)
     meta = _material_data(material)
-    meta.update(load=[load], radius=[radius], units=[UNITS.replace("N/m (per unit length in z)", "N")])
+    meta.update(load=[load], radius=[radius], conventions=[CONVENTIONS])
     meta.update(
         provenance(
             "fem_reference.indentation (scikit-fem: axisymmetric, exponential time steps)",

@@ -28,6 +28,19 @@ from bem import Material
 from validation.references.periodic_exact import murty_lcp  # the dense reference's LCP solver (Murty)
 
 
+def vtk_units(dataset):
+    """The parsed ``units`` field data of a VTK dataset (BEM or FEM: one format), checked to name
+    every point, cell and field array the dataset holds."""
+    import json
+
+    units = json.loads(dataset.field_data["units"][0])
+    arrays = {*dataset.point_data.keys(), *dataset.cell_data.keys(), *dataset.field_data.keys()}
+    missing = arrays - {"units", "conventions"} - set(units)
+    assert not missing, f"arrays without a unit: {sorted(missing)}"
+    assert all(isinstance(u, str) and u for u in units.values()), units
+    return units
+
+
 def make_seed():
     return Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)
 

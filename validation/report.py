@@ -1,7 +1,11 @@
 """Validation reports: ``report.json`` (every number), ``report.md`` (a quick look), a
-self-contained ``report.html`` (summary table, then per case the pressure overlays with their
-errors, the sweeps from each solver and the timings) and every plot as its own PNG under
-``plots/``.
+self-contained ``report.html`` and every plot as its own PNG under ``plots/``.
+
+Both readable reports answer first: one row per case (what is compared with what, pass or fail,
+its worst check as value / tolerance) under a sentence saying how the tolerances were set
+(:mod:`validation.explain`); then, in the HTML, per case the pressure overlays with their errors,
+the sweeps from each solver and the timings, each captioned with the checks it illustrates; then
+every check with its plain name, identifier, tolerance basis and reason.
 
 ``report.html`` works offline and alone: the pressure overlays are drawn in the page from their
 data (inline SVG by ``report_plot.js``, inlined: drag to zoom, double-click to reset), because
@@ -20,6 +24,8 @@ import re
 from pathlib import Path
 
 import numpy as np
+
+from .explain import basis, basis_sentence, illustrated, metric_name, worst_by_metric, worst_check
 
 __all__ = [
     "write_reports",
@@ -57,18 +63,31 @@ def _check_status(k):
 
 
 def _worst(case):
-    """Per (solver, metric): the largest value and its tolerance, failing first."""
-    rows = {}
-    for k in case["checks"]:
-        key = (k["solver"], k["metric"])
-        ratio = (k["value"] / k["tolerance"]) if k["judged"] and k["tolerance"] else -1.0
-        if not math.isfinite(ratio):
-            ratio = math.inf
-        if key not in rows or ratio > rows[key][0] or not k["passed"]:
-            if key in rows and not rows[key][1]["passed"] and k["passed"]:
-                continue
-            rows[key] = (ratio, k)
-    return [k for _, k in rows.values()]
+    """Per (metric, solver): the worst check (:func:`validation.explain.worst_by_metric`)."""
+    return [k for ks in worst_by_metric(case["checks"]).values() for k in ks]
+
+
+def compared(case):
+    """What a case compares with what: ``"bem-periodic, fem against exact"``."""
+    tested = [s for s in case["solvers"] if s != case.get("reference")]
+    return f"{', '.join(tested)} against {case.get('reference') or 'each other'}"
+
+
+def case_rows(record):
+    """One row per case: ``(name, case, worst check or None, passed/judged count, info count)``."""
+    rows = []
+    for name, c in record["cases"].items():
+        checks = c.get("checks", [])
+        judged = [k for k in checks if k["judged"]]
+        passed = sum(k["passed"] for k in judged)
+        rows.append((name, c, worst_check(checks), f"{passed}/{len(judged)}", len(checks) - len(judged)))
+    return rows
+
+
+def _worst_text(k):
+    if k is None:
+        return "-", "-"
+    return f"{metric_name(k['metric'])} ({k['solver']}, {k['label']})", f"{_fmt(k['value'])} / {_fmt(k['tolerance'])}"
 
 
 def write_markdown(record, path, baseline=None):
@@ -93,24 +112,30 @@ def write_markdown(record, path, baseline=None):
             ),
             "",
         ]
-    lines += ["| case | status | time (s) | solvers |", "|---|---|---|---|"]
-    for name, c in record["cases"].items():
-        lines.append(f"| `{name}` | {_status(c)} | {c['seconds']:.1f} | {', '.join(c['solvers'])} |")
+    lines += [
+        basis_sentence(record),
+        "",
+        "| case | compares | status | checks passed | worst check | value / tolerance | time (s) |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for name, c, k, count, _ in case_rows(record):
+        what, ratio = _worst_text(k)
+        lines.append(f"| `{name}` | {compared(c)} | {_status(c)} | {count} | {what} | {ratio} | {c['seconds']:.1f} |")
     for name, c in record["cases"].items():
         lines += ["", f"## `{name}`: {c['title']}", "", c["description"], ""]
         if c["status"] == "error":
             lines += [f"**Error:** `{c['error']}`", ""]
             continue
         lines += [
-            "Worst value of each metric over the points (tolerance and why):",
+            "Worst value of each metric over the points (tolerance, its basis and why):",
             "",
-            "| solver | metric | at | value | tolerance | status | why |",
-            "|---|---|---|---|---|---|---|",
+            "| metric | solver | at | value | tolerance | status | basis | why |",
+            "|---|---|---|---|---|---|---|---|",
         ]
         for k in _worst(c):
             lines.append(
-                f"| {k['solver']} | {k['metric']} | {k['label']} | {_fmt(k['value'])} | {_fmt(k['tolerance'])} "
-                f"| {_check_status(k)} | {k['why']} |"
+                f"| {metric_name(k['metric'])} (`{k['metric']}`) | {k['solver']} | {k['label']} | {_fmt(k['value'])} "
+                f"| {_fmt(k['tolerance'])} | {_check_status(k)} | {basis(k)} | {k['why']} |"
             )
         lines += ["", "| solver | point | time (s) | peak memory (MiB) | detail |", "|---|---|---|---|---|"]
         for r in c["runs"]:
@@ -351,92 +376,157 @@ _CSS = (
 _SCRIPT = Path(__file__).with_name("report_plot.js")
 
 
-def _overlay_html(name, k, prof, png_path):
-    """A zoomable overlay: the data as JSON beside the figure, drawn by report_plot.js."""
+def _overlay_html(name, k, prof, png_path, checks=""):
+    """A zoomable overlay: the data as JSON beside the figure, drawn by report_plot.js, captioned
+    with ``checks``, the checks it illustrates."""
     e = html.escape
     data = json.dumps(overlay_spec(prof), allow_nan=False, separators=(",", ":")).replace("</", "<\\/")
     link = f" <a href='{e(png_path)}'>PNG</a>" if png_path else ""
     return (
         f"<figure class='vb-zoom vb-plot' id='{e(name)}-overlay-{k}'><script type='application/json'>{data}</script>"
-        f"<figcaption>pressure: {e(prof['label'])}. Drag across the plot to zoom into an x range, "
+        f"<figcaption>pressure: {e(prof['label'])}. {e(checks)} Drag across the plot to zoom into an x range, "
         f"double-click to reset; click a legend entry to hide it.{link}</figcaption></figure>"
     )
+
+
+def _plot_caption(case, title, solvers, kind):
+    """The checks a plot illustrates, as text: each metric's worst value / tolerance per solver."""
+    if kind == "timings":
+        return "Wall time of each solver call: cost, not judged."
+    rows = worst_by_metric(illustrated(case, title, solvers, kind))
+    if not rows:
+        return "No check is made on this plot's quantity: it is shown for context."
+    parts = []
+    for metric, ks in rows.items():
+        vals = ", ".join(
+            f"{k['solver']} {_fmt(k['value'])} / {_fmt(k['tolerance']) if k['judged'] else 'info'}" for k in ks
+        )
+        parts.append(f"{metric_name(metric)}: {vals}")
+    return "Checks shown (worst value / tolerance): " + "; ".join(parts) + "."
+
+
+def _figure_kinds(case, count):
+    """``(title, solvers, kind)`` of a case's figures in the order :func:`_figures` makes them."""
+    kinds = [(p["label"], list(p["curves"]), "overlay") for p in case["profiles"]]
+    kinds += [(sw["title"], list(sw["curves"]), "sweep") for sw in case["sweeps"]]
+    kinds += [("timings", [], "timings")] * (count - len(kinds))
+    return kinds
+
+
+def _summary_html(record):
+    e = html.escape
+    parts = [
+        "<table id='summary'><tr><th>case</th><th>compares</th><th>status</th><th>checks passed</th>"
+        "<th>worst check</th><th>value / tolerance</th></tr>"
+    ]
+    for name, c, k, count, info in case_rows(record):
+        st = _status(c)
+        what, ratio = _worst_text(k)
+        if c["status"] == "error":
+            what, ratio = f"raised: {c['error']}", "-"
+        extra = f" (+{info} info)" if info else ""
+        parts.append(
+            f"<tr class='case'><td><a href='#{e(name)}'>{e(name)}</a><br><small>{e(c['title'])}</small></td>"
+            f"<td>{e(compared(c))}</td><td class='{st}'>{st}</td><td>{count}{extra}</td><td>{e(what)}</td>"
+            f"<td>{e(ratio)}</td></tr>"
+        )
+    parts.append("</table>")
+    return parts
+
+
+def _checks_html(record):
+    """The full table: per case, the worst check of each metric and solver, with its basis and why."""
+    e = html.escape
+    parts = [
+        "<h2 id='checks'>All checks</h2><p>Per case, the worst value of each metric for each solver over "
+        "the points; <i>basis</i> is how the tolerance was set (margin: a regression margin over the error "
+        "measured when it was set; bound: from the discretisation or the physics; info: reported, not judged). "
+        "Each case's section below lists every point.</p>"
+        "<table id='all-checks'><tr><th>case</th><th>metric</th><th>solver</th><th>worst at</th><th>value</th>"
+        "<th>tolerance</th><th>status</th><th>basis</th><th>why</th></tr>"
+    ]
+    for name, c in record["cases"].items():
+        if c["status"] == "error":
+            parts.append(f"<tr><td>{e(name)}</td><td colspan=7>{e(c['error'])}</td><td class='ERROR'>ERROR</td></tr>")
+        for k in _worst(c):
+            st = _check_status(k)
+            parts.append(
+                f"<tr><td><a href='#{e(name)}'>{e(name)}</a></td><td>{e(metric_name(k['metric']))}<br>"
+                f"<code>{e(k['metric'])}</code></td><td>{e(k['solver'])}</td><td>{e(k['label'])}</td>"
+                f"<td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td><td class='{st}'>{st}</td>"
+                f"<td>{basis(k)}</td><td>{e(k['why'])}</td></tr>"
+            )
+    parts.append("</table>")
+    return parts
 
 
 def write_html(record, path, baseline=None, figures=None, with_plots=True):
     """``figures[name] = [(title, png[, path]), ...]`` (default: :func:`plots` of each case, unless
     ``with_plots`` is false: then the report holds the tables only). A case's pressure overlays
     (its first figures, one per profile) are drawn zoomable from their data; ``path``, the
-    figure's PNG file relative to the report, is linked under each figure."""
+    figure's PNG file relative to the report, is linked under each figure.
+
+    The page answers first: the summary sentence, how the tolerances were set, one row per case;
+    then the plots of each case, each captioned with the checks it shows; then every check."""
     e = html.escape
     env, s = record["environment"], record["summary"]
+    verdict = "all passed" if s["passed"] == s["cases"] else f"{s['cases'] - s['passed']} failed"
     parts = [
         f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>viscobem validation</title>"
         f"<style>{_CSS}</style></head><body>",
-        f"<h1>viscobem validation ({'quick' if record['quick'] else 'full'} set)</h1>",
-        f"<p>Commit <code>{e(env['commit'][:12])}</code>, {e(env['date'])}, {e(env['machine'])}; "
-        f"{record['seconds']:.1f} s. <b>{s['passed']} of {s['cases']} cases passed</b>, {s['checks']} checks.</p>",
+        f"<h1>viscobem validation ({'quick' if record['quick'] else 'full'} set): "
+        f"<span class='{'PASS' if not s['failed'] else 'FAIL'}'>{s['passed']} of {s['cases']} cases passed</span></h1>",
+        f"<p id='answer'><b>{s['passed']} of {s['cases']} cases passed</b> ({verdict}; {s['checks']} checks). "
+        f"Commit <code>{e(env['commit'][:12])}</code>, {e(env['date'])}, {e(env['machine'])}; "
+        f"{record['seconds']:.1f} s.",
     ]
     if baseline is not None:
-        parts.append(
-            f"<p>Baselines ({e(str(baseline['path']))}): "
-            + (
-                "all within tolerance"
-                if baseline["ok"]
-                else f"<b class='FAIL'>{len(baseline['regressions'])} regressions</b>"
-            )
-            + "</p>"
+        parts[-1] += " Baselines: " + (
+            "every value matches."
+            if baseline["ok"]
+            else f"<b class='FAIL'>{len(baseline['regressions'])} regressions</b>, {len(baseline['missing'])} missing."
         )
-    parts.append(
-        "<h2>Summary</h2><table><tr><th>case</th><th>solver</th><th>metric</th><th>worst at</th>"
-        "<th>value</th><th>tolerance</th><th>status</th></tr>"
-    )
-    for name, c in record["cases"].items():
-        if c["status"] == "error":
-            parts.append(f"<tr><td>{e(name)}</td><td colspan=5>{e(c['error'])}</td><td class='ERROR'>ERROR</td></tr>")
-        for k in _worst(c):
-            st = _check_status(k)
-            parts.append(
-                f"<tr><td><a href='#{e(name)}'>{e(name)}</a></td><td>{e(k['solver'])}</td><td>{e(k['metric'])}"
-                f"</td><td>{e(k['label'])}</td><td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td>"
-                f"<td class='{st}'>{st}</td></tr>"
-            )
-    parts.append("</table>")
+    parts[-1] += "</p>"
+    parts.append(f"<p id='basis'>{e(basis_sentence(record))}</p>")
+    parts += _summary_html(record)
     parts += sensitivity_html(record)
     count = 0
     for name, c in record["cases"].items():
         parts.append(
             f"<h2 id='{e(name)}'>{e(name)}: {e(c['title'])} <span class='{_status(c)}'>{_status(c)}</span></h2>"
-            f"<p>{e(c['description'])}</p>"
+            f"<p>{e(c['description'])} Compares {e(compared(c))}.</p>"
         )
         if c["status"] == "error":
             parts.append(f"<pre>{e(c['traceback'])}</pre>")
             continue
-        parts.append(
-            "<details><summary>all checks</summary><table><tr><th>solver</th><th>metric</th><th>at</th>"
-            "<th>value</th><th>tolerance</th><th>status</th><th>why</th></tr>"
-        )
-        for k in c["checks"]:
-            st = _check_status(k)
-            parts.append(
-                f"<tr><td>{e(k['solver'])}</td><td>{e(k['metric'])}</td><td>{e(k['label'])}</td>"
-                f"<td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td><td class='{st}'>{st}</td>"
-                f"<td>{e(k['why'])}</td></tr>"
-            )
-        parts.append("</table></details>")
         figs = figures[name] if figures is not None else (plots(c) if with_plots else [])
         if figs:
+            kinds = _figure_kinds(c, len(figs))
             overlays = len(c["profiles"])
             for k, prof in enumerate(c["profiles"]):
-                parts.append(_overlay_html(name, k, prof, figs[k][2] if len(figs[k]) > 2 else None))
-            for fig in figs[overlays:]:
+                caption = _plot_caption(c, *kinds[k])
+                parts.append(_overlay_html(name, k, prof, figs[k][2] if len(figs[k]) > 2 else None, caption))
+            for fig, kind in zip(figs[overlays:], kinds[overlays:]):
                 title, png = fig[0], fig[1]
                 link = f" <a href='{e(fig[2])}'>PNG</a>" if len(fig) > 2 else ""
                 parts.append(
                     f"<figure class='vb-plot'><img alt='{e(title)}' src='data:image/png;base64,"
-                    f"{base64.b64encode(png).decode()}'/><figcaption>{e(title)}.{link}</figcaption></figure>"
+                    f"{base64.b64encode(png).decode()}'/><figcaption>{e(title)}. "
+                    f"{e(_plot_caption(c, *kind))}{link}</figcaption></figure>"
                 )
             count += len(figs)
+        parts.append(
+            "<details><summary>every check of this case</summary><table><tr><th>metric</th><th>solver</th>"
+            "<th>at</th><th>value</th><th>tolerance</th><th>status</th><th>basis</th><th>why</th></tr>"
+        )
+        for k in c["checks"]:
+            st = _check_status(k)
+            parts.append(
+                f"<tr><td>{e(metric_name(k['metric']))} <code>{e(k['metric'])}</code></td><td>{e(k['solver'])}</td>"
+                f"<td>{e(k['label'])}</td><td>{_fmt(k['value'])}</td><td>{_fmt(k['tolerance'])}</td>"
+                f"<td class='{st}'>{st}</td><td>{basis(k)}</td><td>{e(k['why'])}</td></tr>"
+            )
+        parts.append("</table></details>")
         parts.append("<table><tr><th>solver</th><th>point</th><th>time (s)</th><th>peak MiB</th><th>detail</th></tr>")
         for r in c["runs"]:
             parts.append(
@@ -450,9 +540,10 @@ def write_html(record, path, baseline=None, figures=None, with_plots=True):
                 + ", ".join(f"<code>{e(f)}</code>" for f in c["files"] if f.endswith(".pvd"))
                 + "</p>"
             )
+    parts += _checks_html(record)
     parts.append(f"<script>{_SCRIPT.read_text(encoding='utf-8')}</script>")
     parts.append("</body></html>")
-    parts[0] = parts[0].replace("<body>", f"<body data-plots='{count}'>")
+    parts[0] = parts[0].replace("<body>", f"<body data-plots='{count}' data-cases='{len(record['cases'])}'>")
     Path(path).write_text("\n".join(parts))
 
 

@@ -18,7 +18,6 @@ standard solid and on a 12-term rubber; a rough profile; a cylinder on the 12-te
 (``E_inf/E0 = 1000``, ``tau`` 1e-7..1 s) on the uniform and the adaptive grid; a sphere.
 """
 
-import argparse
 import math
 import os
 import sys
@@ -27,7 +26,7 @@ import time
 import numpy as np
 
 import bem
-from viscobem_bench.periodic.report import finish, table
+from viscobem_bench.periodic.report import finish, quick_out_main, table
 
 SLS = bem.Material.standard_linear_solid(E0=1e7 / 3, E_inf=1e7, creep_time=0.01)
 RUBBER = bem.Material.from_prony(E0=1e6, moduli=np.full(12, 999e6 / 12), times=np.geomspace(1e-7, 1.0, 12))
@@ -148,12 +147,7 @@ def _report(result, markdown=False):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m viscobem_bench.accuracy", description=__doc__.split("\n")[0])
-    parser.add_argument("--quick", action="store_true", help="small grids (smoke test)")
-    parser.add_argument("--out", default=None, help="directory for accuracy.json and .md")
-    args = parser.parse_args(argv)
-    run(args.quick, args.out)
-    return 0
+    return quick_out_main("accuracy", __doc__, run, "small grids (smoke test)", argv)
 
 
 if __name__ == "__main__":

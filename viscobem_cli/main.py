@@ -53,14 +53,16 @@ def _cmd_run(args):
     for text in scene.warnings:
         print(f"  WARNING: {text}")
     record = run_scene(scene, args.out, progress=not args.no_progress, scheduler=args.scheduler, workers=args.workers)
-    if record["resumed_points"]:
+    if record.get("resumed_points"):
         print(f"  resumed: {record['resumed_points']} finished point(s) found in {args.out} were not solved again")
     if "temperature_sweep" in record:  # a sweep per temperature: the table of mu(v, T) first
         from .run.temperatures import summary
 
         print(summary(record))
-        print(f"  at {record['friction_curve_temperature']:g} K:")
-    _print_curve(record["friction_curve"], record["surface"].get("hertz_radius_relaxed", [None])[0])
+    if "friction_curve" in record:  # a superposed study has its map only
+        if "temperature_sweep" in record:
+            print(f"  at {record['friction_curve_temperature']:g} K:")
+        _print_curve(record["friction_curve"], record["surface"].get("hertz_radius_relaxed", [None])[0])
     for text in record["warnings"][len(scene.warnings) :]:
         print(f"  WARNING: {text}")
     print(f"  total {record['stages']['total']:.1f} s; files: {', '.join(record['files'])}")
@@ -136,7 +138,20 @@ def _optional_notes(args, names):
     return vtk
 
 
+def case_list():
+    """The validation cases, one line each: name, title, and what is compared with what."""
+    from validation.cases import CASES
+    from validation.report import compared
+
+    width = max(map(len, CASES))
+    lines = [f"  {name:<{width}}  {c.title}\n  {'':<{width}}  ({compared(vars(c))})" for name, c in CASES.items()]
+    return "validation cases (--case NAME; --quick runs each at coarse settings):\n" + "\n".join(lines) + "\n"
+
+
 def _cmd_validate(args):
+    if args.list:
+        print(case_list(), end="")
+        return 0
     from validation.report import write_reports
     from validation.runner import run_cases, select
 
@@ -231,7 +246,7 @@ def _update_baselines(record, baseline_path, out):
     if record["summary"]["failed"]:
         print("  baselines NOT updated: some cases fail their tolerances")
         return
-    command = "viscobem validate --quick --update-baselines --out " + str(out)
+    command = "viscobem validate --quick --update-baselines"  # the output folder does not change a value
     print(f"  baselines written to {baselines.write(record, baseline_path, command)}")
 
 
@@ -311,20 +326,25 @@ def build_parser():
             "materials",
             "measured",
             "accuracy",
+            "friction_map",
         ],
         help="all (default: every solver, scaling, skipping), one detailed benchmark "
         "(fem_convergence: the FEM's observed orders in mesh size, domain size and time step), "
         "import (import time of bem against numpy + scipy), materials (Prony fits "
         "and master curves against pyvisco), measured (boundary treatments of measured scans: "
-        "patches cut from known surfaces), or accuracy (the error estimate's cost and its "
-        "agreement with the twice-finer solve)",
+        "patches cut from known surfaces), accuracy (the error estimate's cost and its "
+        "agreement with the twice-finer solve), or friction_map (friction over speed and temperature from "
+        "one curve, against direct solves and one curve's cost)",
     )
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")
     bench.set_defaults(func=_cmd_bench)
     val = sub.add_parser("validate", help="run validation cases (BEM vs FEM vs exact) and write reports")
     val.add_argument("--quick", action="store_true", help="coarse settings (the CI regression set)")
-    val.add_argument("--case", action="append", metavar="NAME", help="run only this case (repeatable)")
+    val.add_argument(
+        "--case", action="append", metavar="NAME", help="run only this case (repeatable; listed below and by --list)"
+    )
+    val.add_argument("--list", action="store_true", help="list the validation cases and exit")
     val.add_argument("--out", default="validation-out", help="output folder (default: validation-out)")
     val.add_argument("--no-vtk", action="store_true", help="do not write VTK files")
     val.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -341,6 +361,8 @@ def build_parser():
         "report which checks catch them (report.json['sensitivity'])",
     )
     val.set_defaults(func=_cmd_validate)
+    # the case list is built only when help is shown: importing the cases costs seconds at start-up
+    val.format_help = lambda: argparse.ArgumentParser.format_help(val) + "\n" + case_list()
     return parser
 
 

@@ -15,6 +15,8 @@ TOP_LEVEL = [
     "friction_curve",
     "SlidingResult",
     "FrictionCurve",
+    "friction_map",
+    "FrictionMap",
     "InputError",
     "ConvergenceError",
     "surfaces",

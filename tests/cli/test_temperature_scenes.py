@@ -295,3 +295,74 @@ def test_results_record_the_law_the_band_and_the_extrapolation(tmp_path, capsys)
     assert all("down to 0.000628 rad/s" in w for w in below)
     assert "WARNING: at 320 K: the material is extrapolated" in printed
     assert sub["warnings"] == rec["warnings"][: len(sub["warnings"])]  # the study's warnings, once
+
+
+RUBBER_MAP = """
+title = "map"
+[material]
+E0 = 1e6
+moduli = [2.5e7, 2.5e7, 2.5e7, 2.5e7, 2.5e7, 2.5e7, 2.5e7, 2.5e7]
+times = [1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0]
+shift = { law = "wlf", C1 = 8.86, C2 = 101.6, reference_temperature = 296.15 }
+[surface]
+kind = "self_affine"
+dim = 1
+length = 0.01
+n = 256
+hurst = 0.8
+scales = 16
+rms_height = 2e-5
+seed = 1
+[loading]
+load = 1e4
+speeds = [1e-5, 1e-4, 1e-3, 1e-2, 1e-1]
+temperatures = [273.15, 296.15, 323.15]
+SUPERPOSITION
+[outputs]
+fields = false
+plots = PLOTS
+"""
+
+
+def test_a_superposed_temperature_study_matches_the_direct_one(tmp_path, capsys):
+    """``superposition = true``: one curve over the reduced speeds stands for every temperature,
+    within 1 % of the study that sweeps each temperature; it writes the same table, with the
+    reduced speeds and the estimate of each interpolated point, and the Grosch plot."""
+    superposed = scenes.parse(RUBBER_MAP.replace("SUPERPOSITION", "superposition = true").replace("PLOTS", "true"))
+    direct = scenes.parse(RUBBER_MAP.replace("SUPERPOSITION", "").replace("PLOTS", "false"))
+    assert superposed.superposition and not direct.superposition
+    rec = run_scene(superposed, tmp_path / "map", progress=False)
+    ref = run_scene(direct, tmp_path / "direct", progress=False)
+    table, sweep = rec["temperature_sweep"], rec["temperature_sweep"]["loads"][0]
+    assert table["method"] == "superposition" and sweep["solves"] > 0
+    mu, mu_direct = np.array(sweep["friction"]), np.array(ref["temperature_sweep"]["loads"][0]["friction"])
+    np.testing.assert_allclose(mu, mu_direct, rtol=0.01)
+    reduced = np.array(sweep["reduced_speed"])
+    np.testing.assert_allclose(reduced, np.outer(10.0 ** np.array(table["log10_shift_factor"]), sweep["speed"]))
+    est = np.array(sweep["interpolation_error"], dtype=float)
+    assert np.all(est[np.array(sweep["interpolated"])] <= 0.005)
+    assert {"friction_master_curve.png", "friction_speed_temperature.png"} <= set(rec["files"])
+    assert (tmp_path / "map" / "friction_master_curve.png").stat().st_size > 10_000
+    assert json.loads((tmp_path / "map" / "results.json").read_text())["temperature_sweep"]["method"] == "superposition"
+
+
+@pytest.mark.parametrize(
+    "change,match",
+    [
+        (("SUPERPOSITION", 'superposition = "yes"'), "superposition must be true or false"),
+        (
+            ("temperatures = [273.15, 296.15, 323.15]\nSUPERPOSITION", "superposition = true"),
+            "needs \\[loading\\] temperatures",
+        ),
+    ],
+)
+def test_superposition_keys_are_checked(change, match):
+    with pytest.raises(InputError, match=match):
+        scenes.parse(RUBBER_MAP.replace(*change).replace("SUPERPOSITION", "").replace("PLOTS", "false"))
+
+
+def test_superposition_needs_moving_speeds(tmp_path):
+    text = RUBBER_MAP.replace("SUPERPOSITION", "superposition = true").replace("PLOTS", "false")
+    s = scenes.parse(text.replace("speeds = [1e-5,", "speeds = [0.0, 1e-5,"))
+    with pytest.raises(InputError, match="speeds > 0"):
+        run_scene(s, tmp_path / "out", progress=False)

@@ -73,3 +73,38 @@ def test_page_text_has_no_stray_attribute_lists(hooks, render):
         rendered = render(page.read_text(encoding="utf-8"))
         found = re.findall(r"<(?:td|th|p|li)\s+(?!class|id|style|align)[^>]*>", rendered)
         assert not found, f"{page.name}: markup turned into attributes: {html.unescape(found[0])}"
+
+
+def test_committed_blocks_are_what_the_code_generates(hooks):
+    """Pages read right in the repository: every block made from the code is committed between its
+    markers, and a block that drifts from the code (or is left empty) fails here; regenerate with
+    ``python docs/hooks.py --write``."""
+    from pathlib import Path
+
+    pages = {p: p.read_text(encoding="utf-8") for p in sorted(Path(hooks.DOCS).rglob("*.md"))}
+    found = {m.group(2) for text in pages.values() for m in hooks._BLOCK.finditer(text)}
+    assert set(hooks.COMMITTED) | set(hooks.BUILT) <= found, "a generated block lost its markers"
+    stale = [p.name for p, text in pages.items() if hooks.rewrite(text, hooks.committed_text) != text]
+    assert not stale, f"stale generated blocks (python docs/hooks.py --write): {stale}"
+    scenes = pages[Path(hooks.DOCS) / "scenes.md"]
+    assert "| `dma` |" in scenes and "| `kind` |" in scenes  # the committed key table, not a placeholder
+    emptied = scenes.replace("| `dma` |", "| `dma_file` |", 1)
+    assert hooks.rewrite(emptied, hooks.committed_text) != emptied  # the check can fail
+
+
+def test_the_validation_case_table_lists_every_case(hooks):
+    from validation.cases import CASES
+
+    rows = hooks._validation_cases().splitlines()[2:]
+    assert [r.split("|")[1].strip().strip("`") for r in rows] == list(CASES)
+
+
+def test_no_absolute_machine_path_in_generated_text(hooks):
+    """Published pages name no folder of the machine that made a record (the baselines' command
+    was run with an absolute --out)."""
+    texts = [hooks.committed_text(name) for name in hooks.COMMITTED]
+    texts += [hooks.public(hooks._validation()), hooks.public(hooks._benchmarks())]  # as on_page_markdown shows them
+    assert hooks.public("source: /work/main/bem, `--out /tmp/v6`") == "source: bem, `--out v6`"
+    for text in texts:
+        found = re.findall(r"(?<![\w:/.])/(?:work|home|tmp|root|Users|private|var)/[^\s`)]*", text)
+        assert not found, found

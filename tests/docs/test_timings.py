@@ -121,3 +121,4 @@ def test_time_text(seconds, text):
     assert timings.time_text(seconds) == text
     value, kind = timings.stated(text)
     assert kind == "time" and abs(value / seconds - 1) < 0.06
+

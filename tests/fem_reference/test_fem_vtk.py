@@ -3,11 +3,12 @@ and compare names, units and values with the result object."""
 
 import numpy as np
 import pytest
+from conftest import vtk_units
 
 from bem import Material
 from fem_reference import rolling_cylinder
 from fem_reference.fields import contact_residual
-from fem_reference.vtk import COMPONENTS, UNITS, tau_name
+from fem_reference.vtk import COMPONENTS, CONVENTIONS, tau_name
 
 
 @pytest.fixture(scope="module")
@@ -35,7 +36,10 @@ def test_vtm_holds_the_block_and_the_interface_with_metadata(rolled):
         np.testing.assert_array_equal(fd["prony_moduli"], m.moduli)
         a0 = np.sqrt(4 * r.load * r.radius * (1 - m.nu**2) / (np.pi * m.E0))
         assert fd["dimensionless_speed"][0] == pytest.approx(r.speed * m.creep_times.max() / a0, rel=1e-12)
-        assert str(fd["units"][0]) == UNITS and "Pa" in UNITS and "m/s" in UNITS
+        units = vtk_units(ds)
+        assert units["speed"] == "m/s" and units["load"] == "N/m" and units["E0"] == "Pa"
+        assert str(fd["conventions"][0]) == CONVENTIONS
+    assert vtk_units(vol)[tau_name(m.relaxation_times[0])] == "1" and vtk_units(vol)["stress"] == "Pa"
     # the interface: the result's own pressure, contact set and gap, at its own nodes
     np.testing.assert_array_equal(iface.points[:, 0], r.x)
     np.testing.assert_array_equal(iface.point_data["pressure"], r.pressure)
@@ -176,7 +180,8 @@ def test_indentation_pvd_time_series(tmp_path):
     assert np.all(np.abs(iface.point_data["gap"][contact]) <= 1e-6 * r.approach[-1])
     fd = iface.field_data
     assert fd["time"][0] == pytest.approx(0.05) and fd["approach"][0] == pytest.approx(r.approach[-1])
-    assert fd["load"][0] == 1.0 and fd["E_inf"][0] == m.E_inf and "N" in str(fd["units"][0])
+    assert fd["load"][0] == 1.0 and fd["E_inf"][0] == m.E_inf and vtk_units(iface)["load"] == "N"
+    assert vtk_units(vol)["dissipation"] == "W/m^3" and vtk_units(vol)["time"] == "s"
     for name in ("stress", "von_mises", "hydrostatic_pressure", "dissipation"):
         assert name in vol.cell_data.keys()
     # creeping at t = 5 creep times: the dashpots still dissipate, never negatively

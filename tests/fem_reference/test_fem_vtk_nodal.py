@@ -54,5 +54,5 @@ def test_rolling_vtm_has_nodal_stress_and_provenance(tmp_path):
     assert fd["viscobem_version"][0] == version("viscobem") and "rolling_cylinder" in fd["solver"][0]
     settings = json.loads(fd["solver_settings"][0])
     assert settings["n_elements"] == result.n_elements and settings["grading"] == result.grading
-    units = json.loads(fd["units_json"][0])
+    units = json.loads(fd["units"][0])
     assert units["stress_nodal"] == "Pa" and units["displacement"] == "m"

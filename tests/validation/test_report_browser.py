@@ -143,3 +143,37 @@ def test_console_shows_no_error(page):
     entries = page.get_log("browser")
     errors = [e for e in entries if e["level"] in ("SEVERE", "ERROR")]
     assert not errors, errors
+
+
+# the first screen: every case's row of the summary, whole, above the first plot
+FIRST_SCREEN = """
+window.scrollTo(0, 0);
+const rows = [...document.querySelectorAll('#summary tr.case')];
+const height = window.innerHeight;
+const plot = document.querySelector('.vb-plot');
+return {
+  cases: Number(document.body.dataset.cases),
+  rows: rows.map(r => [r.cells[0].innerText.split('\\n')[0], r.cells[2].innerText, r.cells[5].innerText,
+                       r.getBoundingClientRect().bottom <= height]),
+  basis: (document.getElementById('basis') || {}).innerText || '',
+  tableBottom: rows.length ? rows[rows.length - 1].getBoundingClientRect().bottom : null,
+  plotTop: plot ? plot.getBoundingClientRect().top : null,
+};
+"""
+
+
+def test_the_first_screen_answers(page, report, tmp_path):
+    """A person opening the report sees, without scrolling, one row per case with its status and
+    its worst check as value / tolerance, and how the tolerances were set; the plots come after."""
+    import json
+
+    screen = page.execute_script(FIRST_SCREEN)
+    record = json.loads(report.with_name("report.json").read_text())
+    assert screen["cases"] == len(record["cases"]) == len(screen["rows"])
+    for (name, status, ratio, visible), (case, c) in zip(screen["rows"], record["cases"].items()):
+        assert name == case and visible, f"{case}: its row is not on the first screen"
+        assert status == {"passed": "PASS", "failed": "FAIL", "error": "ERROR"}[c["status"]]
+        assert " / " in ratio or c["status"] == "error", ratio
+    assert "regression margin" in screen["basis"] and "judged checks" in screen["basis"]
+    assert screen["plotTop"] is None or screen["plotTop"] > screen["tableBottom"]
+    page.save_screenshot(str(shots(tmp_path) / "first_screen.png"))

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import vtk_units
 
 from validation import baselines, metrics
 from validation.cases import CASES, cylinder, periodic
@@ -117,10 +118,39 @@ def _pvd_entries(path):
     return [(d.get("file"), float(d.get("timestep"))) for d in ET.parse(path).getroot().iter("DataSet")]
 
 
+def every_file_states_its_units(folder):
+    """Parse ``units`` from every VTK file under ``folder`` (each block of a .vtm); return the
+    suffixes seen. BEM and FEM files carry the same JSON object."""
+    import pyvista as pv
+
+    files = sorted(p for p in Path(folder).rglob("*") if p.suffix in (".vti", ".vtu", ".vtp", ".vtm"))
+    for f in files:
+        data = pv.read(f)
+        for ds in data if isinstance(data, pv.MultiBlock) else [data]:
+            units = vtk_units(ds)
+            assert units["displacement"] == "m" and units["speed"] == "m/s", f
+            assert units.get("pressure", "Pa") == "Pa" and units.get("stress", "Pa") == "Pa", f
+    return {f.suffix for f in files}
+
+
+def paraview_snippet():
+    """The Python block of docs/paraview.md that reads a file's provenance and units."""
+    text = (Path(__file__).parents[2] / "docs" / "paraview.md").read_text()
+    block = text[text.index("## What made a file") :].split("```python\n", 1)[1].split("```", 1)[0]
+    assert 'pv.read("viscobem-out/vtk/point_000.vti")' in block
+    return block
+
+
+def run_paraview_snippet(path, capsys):
+    exec(paraview_snippet().replace("viscobem-out/vtk/point_000.vti", str(path)), {})
+    return capsys.readouterr().out
+
+
 def test_every_vtk_file_reads_back(cheap_run):
     import pyvista as pv
 
     _, out, record = cheap_run
+    assert every_file_states_its_units(out / "vtk") == {".vti", ".vtm", ".vtu", ".vtp"}  # BEM and FEM
     files = [f for c in record["cases"].values() for f in c["files"]]
     assert files and all((out / f).exists() for f in files)
     for f in files:
@@ -162,9 +192,10 @@ def test_vti_holds_the_reported_pressure(cheap_run):
     np.testing.assert_array_equal(p[:, 0], prof)
 
 
-def test_fem_vtu_and_pvd_of_a_rolling_sweep(tmp_path, monkeypatch):
+def test_fem_vtu_and_pvd_of_a_rolling_sweep(tmp_path, monkeypatch, capsys):
     """One coarse speed of the rolling cylinder through the CLI: BEM .vti (periodic and isolated),
-    FEM .vtm (block and interface), a .pvd per solver."""
+    FEM .vtm (block and interface), a .pvd per solver; every file's ``units`` parses the same way,
+    and the docs' snippet reads both kinds."""
     import pyvista as pv
 
     cfg = dict(cylinder.QUICK_SLS[3], s=[0.3], cells=10, resolution=2)
@@ -207,6 +238,13 @@ def test_fem_vtu_and_pvd_of_a_rolling_sweep(tmp_path, monkeypatch):
     assert bem.field_data["E_inf"][0] == m.E_inf and bem.field_data["E0"][0] == pytest.approx(m.E0)
     np.testing.assert_allclose(bem.field_data["relaxation_times"], m.relaxation_times)
     assert bem.field_data["load"][0] == pytest.approx(cylinder.P) and "Pa" in str(bem.field_data["units"][0])
+    assert every_file_states_its_units(tmp_path / "vtk") >= {".vti", ".vtm", ".vtu", ".vtp"}
+    capsys.readouterr()
+    case = tmp_path / "vtk" / "cylinder_sls_r3"
+    printed = run_paraview_snippet(case / "bem-periodic" / "point_000.vti", capsys)
+    assert "bem-periodic" in printed and "'pressure': 'Pa'" in printed
+    printed = run_paraview_snippet(case / "fem" / "point_000.vtm", capsys)
+    assert "rolling_cylinder" in printed and "'pressure': 'Pa'" in printed and "'stress_nodal': 'Pa'" in printed
 
 
 # ------------------------------------------------------------------ checks that can fail

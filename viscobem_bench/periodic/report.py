@@ -197,3 +197,15 @@ def report(result, markdown=False):
     parts += result["notes"]
     parts.append(f"total benchmark time {result['total_time']:.0f} s")
     return "\n\n".join(parts)
+
+
+def quick_out_main(stem, doc, run, quick_help, argv=None):
+    """``python -m viscobem_bench.<stem> [--quick] [--out DIR]``: run ``run(quick, out)``; 0."""
+    import argparse
+
+    parser = argparse.ArgumentParser(prog=f"python -m viscobem_bench.{stem}", description=doc.split("\n")[0])
+    parser.add_argument("--quick", action="store_true", help=quick_help)
+    parser.add_argument("--out", default=None, help=f"directory for {stem}.json and .md")
+    args = parser.parse_args(argv)
+    run(args.quick, args.out)
+    return 0

@@ -13,16 +13,16 @@ from pathlib import Path
 import numpy as np
 
 from .anisotropy import anisotropy_vs_xi, polar_m2, psd_contour
-from .style import label_log_axis, nan_array, pyplot, save, sliding_arrow, speed_axis, xi_label
+from .style import label_log_axis, nan_array, pyplot, save, sliding_arrow, sweep_axis
 
 
 def friction_curve(scene, record, path):
-    """Friction (both forms, mean ± standard error) against xi, on a linear and a log axis;
-    Persson's theory if computed."""
+    """Friction (both forms, mean ± standard error) against the speed, on a linear and a log axis
+    (xi or v in m/s first, :func:`~.style.speed_first`); Persson's theory if computed."""
     plt = pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.4), constrained_layout=True)
-    xi = np.asarray(scene.xi)
     for ax in axes:
+        xi = sweep_axis(ax, scene)  # the x values: xi, or the speeds
         for k, curve in enumerate(record["curves"]):
             tag = f" ({curve['load']:g} N)" if len(record["curves"]) > 1 else ""
             mu, se = nan_array(curve["friction"]), nan_array(curve["friction_se"])
@@ -52,11 +52,8 @@ def friction_curve(scene, record, path):
                 )
         for row in record.get("persson", []):
             ax.plot(xi, row["friction"], "k-", lw=1.2, label=f"Persson (2001), {row['pressure']:.3g} Pa")
-        ax.set_xscale("log")
-        ax.set_xlabel(xi_label(scene), fontsize=9)
         ax.set_ylabel("friction coefficient $\\mu$")
         ax.grid(True, which="both", alpha=0.3)
-        speed_axis(ax, scene)
     axes[1].set_yscale("log")
     label_log_axis(axes[1].yaxis)
     axes[0].set_ylim(bottom=0)
@@ -70,11 +67,11 @@ def friction_curve(scene, record, path):
 
 
 def contact_area(scene, record, path):
-    """True contact area against xi: % of the cell (periodic), or contact radius (mm) and
-    a / a_Hertz (indenters); Persson's P(q1) if computed."""
+    """True contact area against the speed (xi or v, as :func:`friction_curve`): % of the cell
+    (periodic), or contact radius (mm) and a / a_Hertz (indenters); Persson's P(q1) if computed."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.4), constrained_layout=True)
-    xi = np.asarray(scene.xi)
+    xi = sweep_axis(ax, scene)  # the x values: xi, or the speeds
     indenter = "contact_radius" in record["curves"][0]
     for curve in record["curves"]:
         key = "contact_radius" if indenter else "contact_fraction"
@@ -91,8 +88,6 @@ def contact_area(scene, record, path):
         )
     for row in record.get("persson", []):
         ax.plot(xi, 100 * np.asarray(row["contact_fraction"], dtype=float), "k-", lw=1.2, label="Persson P(q1)")
-    ax.set_xscale("log")
-    ax.set_xlabel(xi_label(scene), fontsize=9)
     if indenter:
         a0 = record["surface"]["hertz_radius_relaxed"][0] * 1e3
         glassy = record["surface"]["hertz_radius_glassy"][0] * 1e3
@@ -105,7 +100,6 @@ def contact_area(scene, record, path):
         ax.set_ylabel("true contact area (% of the nominal area)")
         ax.set_ylim(bottom=0)
     ax.grid(True, which="both", alpha=0.3)
-    speed_axis(ax, scene)
     ax.legend(fontsize=8)
     save(fig, path)
 

@@ -75,12 +75,30 @@ def label_log_axis(axis):
         axis.set_minor_formatter(mticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(2, 0.4)))
 
 
-def speed_axis(ax, scene):
-    """A secondary x axis on top: the sliding speed (m/s) that xi stands for."""
-    k = scene.xi_length / scene.xi_time
-    top = ax.secondary_xaxis("top", functions=(lambda x: x * k, lambda v: v / k))
-    top.set_xlabel("sliding speed v (m/s)", fontsize=8)
+def speed_first(scene):
+    """True when a sweep is plotted against the speed (m/s), xi on the secondary axis: for a fitted
+    or many-term material, whose tau in xi = v tau / L is only its longest time (hours for a DMA
+    rubber) and means nothing to its user; a one-time material keeps xi, the seed paper's axis."""
+    return getattr(scene, "dma", None) is not None or np.size(scene.material.creep_times) > 1
+
+
+def sweep_axis(ax, scene):
+    """The x values of a speed sweep on ``ax`` (log scale, labelled), with the other of speed and
+    xi on a secondary axis on top (:func:`speed_first` picks the main one)."""
+    k = scene.xi_length / scene.xi_time  # v = k xi
+    ax.set_xscale("log")
+    if speed_first(scene):
+        ax.set_xlabel("sliding speed v (m/s)", fontsize=9)
+        top = ax.secondary_xaxis("top", functions=(lambda v: v / k, lambda x: x * k))
+        top.set_xlabel(xi_label(scene), fontsize=8)
+        x = np.asarray(scene.xi) * k
+    else:
+        ax.set_xlabel(xi_label(scene), fontsize=9)
+        top = ax.secondary_xaxis("top", functions=(lambda x: x * k, lambda v: v / k))
+        top.set_xlabel("sliding speed v (m/s)", fontsize=8)
+        x = np.asarray(scene.xi)
     top.tick_params(labelsize=7)
+    return x
 
 
 def xi_label(scene):

@@ -35,6 +35,37 @@ def plot_temperature_sweep(table, out):
     return written
 
 
+def plot_grosch(table, out):
+    """Grosch's picture of a superposed study: the friction against the speed at each temperature,
+    and the same points against the reduced speed v a_T, where they fall on the one curve that was
+    solved (its nodes drawn as a line). ``[]`` unless the table holds that curve."""
+    sweep = table["loads"][0]
+    if not sweep.get("curve"):
+        return []
+    plt = pyplot()
+    T = np.array(table["temperature"])
+    v = np.array(sweep["speed"], dtype=float)
+    mu = np.array(sweep["friction"], dtype=float)
+    reduced = np.array(sweep["reduced_speed"], dtype=float)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11.0, 4.4), sharey=True)
+    colors = plt.cm.coolwarm((T - T.min()) / max(np.ptp(T), 1e-12))
+    for k in np.argsort(T):
+        left.plot(v, mu[k], "o-", ms=3, lw=1, color=colors[k], label=f"{T[k]:.1f} K")
+        right.plot(reduced[k], mu[k], "o", ms=3, color=colors[k])
+    curve = sweep["curve"]
+    right.plot(curve["reduced_speed"], np.array(curve["friction"], dtype=float), "k-", lw=1, label="the solved curve")
+    left.set_xlabel("sliding speed v (m/s)")
+    right.set_xlabel(f"reduced speed v a_T (m/s), at {table['shift']['reference_temperature']:g} K")
+    left.set_ylabel("friction coefficient")
+    for ax in (left, right):
+        ax.set_xscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+    left.legend(fontsize="small")
+    right.legend(fontsize="small")
+    fig.suptitle(f"friction by time-temperature superposition (load {sweep['load']:g} N, or N/m for profiles)")
+    return [save(fig, out / "friction_master_curve.png", dpi=110, tight=True)]
+
+
 def plot_master_curve(data, material, law, path):
     """Raw sweeps (E', E'' against w), the same shifted to the reference by ``law``, and the fit."""
     plt = pyplot()

@@ -280,6 +280,8 @@ def run_scene(scene, out_dir, *, progress=True, scheduler=None, workers=None):
     if len(scene.directions) > 1:  # a sweep over sliding directions: one study per direction
         return _per_direction(scene, out_dir, options)
     check_sweep(scene.surface, scene.material, speeds=scene.speeds, loads=scene.loads, rtol=scene.rtol)
+    if scene.temperatures and scene.superposition:  # one curve over the reduced speeds
+        return temperatures.superposed(scene, out_dir)
     if scene.temperatures:  # one sweep per temperature (viscobem_cli.scene.temperatures)
         return _per_temperature(scene, out_dir, options)
     out = Path(out_dir)

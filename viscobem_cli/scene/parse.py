@@ -121,7 +121,7 @@ SCHEMA = {
         "channel",
         "patch",
     },  # kind = "measured"
-    "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},
+    "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "superposition", "direction_deg"},
     "solver": {
         "rtol",
         "maxiter",
@@ -178,6 +178,7 @@ class Scene:
     fields_precision: str = "float32"
     shift: object = None  # time-temperature shift law (bem.materials.temperature), or None
     temperatures: tuple = ()  # K; a sweep per temperature when given
+    superposition: bool = False  # the temperatures from one curve over the reduced speeds (bem.friction_map)
     dma: dict = field(default=None, repr=False)  # the DMA table in SI (viscobem_cli.scene.temperatures.read_dma)
     directions: tuple = (0.0,)  # sliding directions (radians), see viscobem_cli.scene.directions
 

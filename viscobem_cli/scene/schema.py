@@ -359,6 +359,16 @@ KEYS += [
     ),
     Key(
         "loading",
+        "superposition",
+        "boolean",
+        "",
+        False,
+        "true | false; needs temperatures and speeds > 0",
+        "Make the temperature study from one friction curve on the reference material over the reduced speeds "
+        "v a_T (time-temperature superposition, bem.friction_map) instead of one sweep per temperature.",
+    ),
+    Key(
+        "loading",
         "direction_deg",
         "number or list",
         "degree",

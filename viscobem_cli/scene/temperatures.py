@@ -18,13 +18,20 @@ rejected as looking like degrees Celsius)::
          # jointly with the series (bem.Material.fit_master_curve)
     [loading]
     temperatures = [273.15, 296.15, 323.15]   # K; needs a shift law
+    superposition = true          # one curve over the reduced speeds v a_T stands for every temperature
 
 The material of the scene is the one at the law's reference temperature. With
 ``temperatures``, the speed sweep runs once per temperature on
 ``material.at_temperature(T, law)`` (:func:`scene_at`: the speeds stay, and ``xi`` and its
 time are those of the material at ``T``), each in its own folder ``T_<value>K`` (resumable
 like any sweep), and the study's ``results.json`` gains ``temperature_sweep``: friction and
-contact fraction per temperature and speed. Plots: ``friction_speed_temperature.png`` (a heat
+contact fraction per temperature and speed. With ``superposition = true`` the study is instead one
+curve on the reference material over the reduced speeds ``v a_T`` that every temperature needs
+(:func:`bem.friction_map`: exact for a material moved by a shift law, interpolated between the
+curve's nodes within an estimated 0.5 %), written as the same ``temperature_sweep`` with the
+reduced speeds and each point's interpolation estimate, and a Grosch plot
+(``friction_master_curve.png``: friction against speed at each temperature, and against the
+reduced speed, where every temperature falls on the one curve). Plots: ``friction_speed_temperature.png`` (a heat
 map of the friction coefficient over log10 speed and T) and ``friction_curves_temperatures.png``
 (one curve per temperature); ``master_curve.png`` when the material was fitted to sweeps at
 several temperatures (raw data, data shifted by the law, and the fit).
@@ -167,15 +174,21 @@ def loading_temperatures(t, law):
 
 
 def scene_fields(raw, material):
-    """``{"shift": law or None, "temperatures": tuple}`` for the Scene, from the raw tables."""
+    """``{"shift": law or None, "temperatures": tuple, "superposition": bool}`` for the Scene, from the
+    raw tables."""
     law = shift_law(raw["material"], material)
     temps = loading_temperatures(raw["loading"], law)
+    superposed = raw["loading"].get("superposition", False)
+    if not isinstance(superposed, bool):
+        raise InputError(f"[loading] superposition must be true or false, got {superposed!r}")
+    if superposed and not temps:
+        raise InputError("[loading] superposition = true needs [loading] temperatures (K) to map")
     for T in temps:  # a shift beyond what floating point holds is named here, not in the run
         try:
             material.at_temperature(T, law)
         except InputError as err:
             raise InputError(f"[loading] temperatures: {err}") from None
-    return {"shift": law, "temperatures": temps}
+    return {"shift": law, "temperatures": temps, "superposition": superposed}
 
 
 def scene_at(scene, T):
