@@ -34,6 +34,7 @@ from .contact.options import MAXITER, RTOL
 from .errors import ConvergenceError, InputError
 from .halfspace.cache import clear_operator_cache, operator_for
 from .materials.material import Material
+from .plausibility import height_checks
 from .result import SlidingResult
 from .surfaces.surface import Surface
 
@@ -57,6 +58,8 @@ def check_inputs(surface, material, speed, load, approach, rtol):
     (e.g. a study checking its range before it writes anything); return them converted,
     ``(surface, speed, load, approach, rtol)``. Raises :class:`~bem.errors.InputError`."""
     surface = _as_surface(surface)
+    if not surface.centered:  # a periodic cell's heights span less than the cell (bem.plausibility)
+        height_checks(surface.heights, surface.length, name="surface heights")
     if not isinstance(material, Material):
         raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
     speed = check_positive("speed", speed, allow_zero=True)

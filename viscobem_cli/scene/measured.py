@@ -15,6 +15,7 @@ periodic or not) on the solver grid, through :func:`bem.surfaces.from_scan` with
     unit = "um"                # only if the file has no unit: unit of heights and sizes
     scan_size = [50, 40]       # only if the file has no size: extent along x, y in `unit`
     channel = 0                # height channel of a multi-channel file
+    transpose = false          # swap the file's axes: for a matrix whose rows run along y
 
 ``[loading] load`` is the force on the solved patch (N; N/m for a line scan). A mirrored cell
 holds the patch four times (twice for a line), so the solver gets that many times the load
@@ -37,7 +38,7 @@ from bem.surfaces import measured
 
 __all__ = ["KEYS", "periodic", "surfaces", "patch_loads", "warnings_of"]
 
-KEYS = {"path", "n", "detrend", "boundary", "window", "alpha", "patch", "unit", "scan_size", "channel"}
+KEYS = {"path", "n", "detrend", "boundary", "window", "alpha", "patch", "unit", "scan_size", "channel", "transpose"}
 
 
 def _check(t):
@@ -64,7 +65,11 @@ def surfaces(t, base):
     with ``patch = "cover"``; each with its PSD report in ``metadata["measured"]["psd"]``."""
     _check(t)
     m = measured.read_topography(
-        base / t["path"], unit=t.get("unit"), physical_sizes=t.get("scan_size"), channel=t.get("channel", 0)
+        base / t["path"],
+        unit=t.get("unit"),
+        physical_sizes=t.get("scan_size"),
+        channel=t.get("channel", 0),
+        transpose=t.get("transpose", False),
     )
     patch = t.get("patch", "centre")
     patches = measured.cover(m) if patch == "cover" else [tuple(patch) if isinstance(patch, list) else patch]

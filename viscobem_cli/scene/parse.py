@@ -119,6 +119,7 @@ SCHEMA = {
         "alpha",
         "scan_size",
         "channel",
+        "transpose",
         "patch",
     },  # kind = "measured"
     "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "direction_deg"},

@@ -36,8 +36,10 @@ import numpy as np
 
 from ...checks import check_int, check_positive, check_range
 from ...errors import InputError
+from ...plausibility import height_checks
 from ..surface import Surface
 from .cleaning import detrend as detrend_
+from .cleaning import find_steps
 from .reading import Measurement, from_array, read_topography
 from .windows import (
     DEFAULT_WINDOW,
@@ -233,6 +235,8 @@ def to_surface(
     )
     piece = detrend_(piece, detrend)
     done = piece.source["detrend"]
+    found = height_checks(piece.heights, max(piece.physical_sizes), name="the scan's heights")
+    found += find_steps(piece.heights, piece.spacing)
     mismatch = edge_mismatch(piece.heights)
     record = {
         "boundary": boundary,
@@ -259,8 +263,9 @@ def to_surface(
     record["variance_above_grid_nyquist"] = variance_above(field, piece.spacing, np.pi * n / side)
     record["cell_side"] = side * factor
     record["load_factor"] = factor**measurement.heights.ndim
-    record["warnings"] = _boundary_warnings(record, mismatch, piece.periodic)
-    _warn(record["warnings"])
+    found += _boundary_warnings(record, mismatch, piece.periodic)
+    _warn(found)  # the reader's warnings were issued when it read the scan
+    record["warnings"] = list(measurement.source.get("warnings", ())) + found
     label = name if name is not None else str(measurement.source.get("path", "measured"))
     return Surface(
         heights,
@@ -317,15 +322,18 @@ def from_scan(
     alpha=0.25,
     patch="centre",
     name=None,
+    transpose=False,
 ):
     """A measured scan on the solver's grid: the one entry for measured topographies.
 
     Parameters
     ----------
     scan : str, os.PathLike, array_like or Measurement
-        A topography file (any format SurfaceTopography reads; needs the ``topography`` extra),
-        an array of heights ``h[ix, iy]`` (or a line ``h[ix]``) in ``unit``, or a
-        :class:`Measurement`. Any rectangular shape; periodic or not.
+        A topography file (a plain matrix, ``.npy`` or text; or any format SurfaceTopography
+        reads, with the ``topography`` extra), an array of heights ``h[ix, iy]`` (or a line
+        ``h[ix]``) in ``unit`` with NaN where a point is missing, or a :class:`Measurement`. Any
+        rectangular shape; periodic or not. Axes, units and missing points as
+        :mod:`bem.surfaces.measured.reading` states.
     n : int, optional
         Grid points per side of the solved patch (default: its own pixels).
     physical_sizes : float or tuple, optional
@@ -336,6 +344,8 @@ def from_scan(
         it stores none; for an array default ``"m"``.
     channel : int
         Height channel of a multi-channel file.
+    transpose : bool
+        Swap the axes (and sizes) of the file or array: for rows that run along y.
     detrend, boundary, window, alpha, patch, name
         As :func:`to_surface`; ``detrend="plane"`` by default.
 
@@ -354,13 +364,15 @@ def from_scan(
     (0.6667, 400.0, 32)
     """
     if isinstance(scan, Measurement):
-        if unit is not None or physical_sizes is not None:
-            raise InputError("unit and physical_sizes come with the Measurement; leave them out")
+        if unit is not None or physical_sizes is not None or transpose:
+            raise InputError("unit, physical_sizes and transpose come with the Measurement; leave them out")
         measurement = scan
     elif isinstance(scan, (str, PathLike)):
-        measurement = read_topography(scan, unit=unit, physical_sizes=physical_sizes, channel=channel)
+        measurement = read_topography(
+            scan, unit=unit, physical_sizes=physical_sizes, channel=channel, transpose=transpose
+        )
     else:
-        measurement = from_array(scan, physical_sizes, "m" if unit is None else unit)
+        measurement = from_array(scan, physical_sizes, "m" if unit is None else unit, transpose=transpose)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         surface = to_surface(

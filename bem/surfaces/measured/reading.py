@@ -1,26 +1,34 @@
-"""Reading measured topographies: the :class:`Measurement` type, the unit table, instrument files
-(through SurfaceTopography) and arrays, all converted to metres.
+"""Reading measured topographies into metres: the :class:`Measurement` type, the one unit table,
+plain matrices (``.npy`` and text) and instrument files (through SurfaceTopography).
 
-Reading goes through SurfaceTopography (the optional extra ``topography``:
-``pip install 'viscobem[topography]'``), imported only when a file is read, so ``import bem``
-does not need it. Every format it reads is accepted (AFM, profilometer and interferometer
-files: X3P, NetCDF, Gwyddion, Digital Surf SUR, Zygo DATX/MetroPro, Keyence, Sensofar,
-Bruker/DI, NumPy ``.npy``, plain text with a header, ...); its format detection picks the reader.
+**Axes (one convention for every reader).** Heights are ``h[ix, iy]``: array axis 0 is x, the
+sliding direction, as everywhere in :mod:`bem`. A bare matrix in a file is that array as
+written: ``.npy`` holds it as it is, and a text file holds one row per x (row ``i`` is
+``h[i, 0], h[i, 1], ...``), which is what ``numpy.save(path, h)`` and ``numpy.savetxt(path, h)``
+write. Text cells are separated by commas, semicolons, tabs or spaces (a semicolon-separated
+file may use decimal commas); ``#`` starts a comment. Instrument formats (X3P, NetCDF, Gwyddion,
+SUR, DATX, ... and text exports whose header names the sizes and units, which store one row per y
+as an image) know their own axes: SurfaceTopography reads them, and they come out as
+``h[ix, iy]`` too. A file whose rows run the other way is read with ``transpose=True``, which
+swaps its axes (and its sizes) before anything else. Pixels that the sizes and shape make
+non-square by more than :data:`SQUARE_PIXELS` are warned about, saying how to transpose: a map
+read with its axes crossed shows up that way.
 
-Units: heights and lateral sizes come back in metres. A file that stores its unit and
-physical size is converted with them; a file without them (e.g. a bare matrix of numbers)
-needs ``unit`` and ``physical_sizes`` from the caller, and giving a different unit or size
-than the file's is an error (the file is the authority).
+**Units** (:data:`UNITS`): every reader takes the same spellings (``m``, ``mm``, ``um``, ``µm``
+with either micro sign, ``micron``, ``nm``, ``pm``, ``A``, ``Å``). A file that stores its unit
+and size is converted with them (the file is the authority: a different ``unit`` or
+``physical_sizes`` is an error); a bare matrix needs both from the caller.
 
-Arrays are indexed ``h[ix, iy]`` (axis 0 = x, the sliding direction), as everywhere in
-:mod:`bem`, and so are ``.npy`` files. Plain text matrices are read as SurfaceTopography and
-the instruments write them, one row per y (as an image), which is the transpose of
-:func:`load`'s one row per x.
+**Missing points** (``NaN`` in an array, empty or ``nan`` cells in text, undefined data in an
+instrument file) follow one policy, :func:`bem.surfaces.measured.cleaning.fill_missing`.
 
-Plain height files (``.npy``, ``.txt``, ``.csv`` in metres or a given unit, one row per x) that
-hold one square periodic cell are read without SurfaceTopography by :func:`load`.
+SurfaceTopography is the optional extra ``topography`` (``pip install 'viscobem[topography]'``),
+imported only when an instrument file is read, so ``import bem`` and plain matrices do not need
+it.
 """
 
+import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -29,12 +37,46 @@ import numpy as np
 from ...checks import check_array, check_positive, show
 from ...errors import InputError
 from ..surface import Surface
+from .cleaning import fill_missing
 
-__all__ = ["Measurement", "read_topography", "from_array", "load", "unit_factor"]
+__all__ = [
+    "UNITS",
+    "SQUARE_PIXELS",
+    "MATRIX_SUFFIXES",
+    "Measurement",
+    "read_topography",
+    "read_matrix",
+    "from_array",
+    "load",
+    "unit_factor",
+    "pixel_warnings",
+]
 
-_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9}
+# the one unit table of lengths (m per unit); both micro signs (U+00B5, U+03BC) are written
+UNITS = {
+    "m": 1.0,
+    "mm": 1e-3,
+    "um": 1e-6,
+    "\u00b5m": 1e-6,
+    "\u03bcm": 1e-6,
+    "micron": 1e-6,
+    "nm": 1e-9,
+    "pm": 1e-12,
+    "A": 1e-10,
+    "\u00c5": 1e-10,
+}
+# pixel aspect ratio beyond which the axes are suspected crossed: instruments write square
+# pixels to well within a percent, and a transposed 160 x 240 map has pixels 2.25 : 1
+SQUARE_PIXELS = 0.03
+MATRIX_SUFFIXES = (".npy", ".txt", ".csv", ".tsv", ".dat", ".asc")
 _HINT = "SurfaceTopography is not installed; reading topography files needs it: pip install 'viscobem[topography]'"
-_SI = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9, "pm": 1e-12, "A": 1e-10, "Å": 1e-10}
+# header lines of instrument text exports (SurfaceTopography's text reader parses them)
+_INSTRUMENT_HEADER = re.compile(
+    r"^\s*#?\s*(width|height|x-length|y-length|x-pixels|y-pixels|value units|channel|x-unit|z-unit|"
+    r"lateral units|data units)\b\s*[:=]",
+    re.IGNORECASE,
+)
+_MISSING_CELLS = {"", "nan", "na", "n/a", "-", "--", "none", "null"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -74,10 +116,11 @@ class Measurement:
         return tuple(s / n for s, n in zip(self.physical_sizes, self.heights.shape))
 
 
-def unit_factor(unit, name):
-    if unit not in _SI:
-        raise InputError(f"{name} must be one of {', '.join(sorted(_SI))}, got {unit!r}")
-    return _SI[unit]
+def unit_factor(unit, name="unit"):
+    """Metres per ``unit`` (a key of :data:`UNITS`); anything else is an InputError naming ``name``."""
+    if not isinstance(unit, str) or unit.strip() not in UNITS:
+        raise InputError(f"{name} must be one of {', '.join(UNITS)}, got {show(unit)}")
+    return UNITS[unit.strip()]
 
 
 def _read_errors():
@@ -123,25 +166,169 @@ def _fixed(name, given, from_file, same):
     return from_file
 
 
-def read_topography(path, *, unit=None, physical_sizes=None, channel=0):
-    """Read a topography file (any format SurfaceTopography reads) into metres.
+def _cells(line, delimiter):
+    return [c.strip() for c in (line.split(delimiter) if delimiter else line.split())]
+
+
+def _number(cell):
+    """A text cell as a float: NaN for a missing point, None for text that is not a number."""
+    if cell.strip('"').lower() in _MISSING_CELLS:
+        return np.nan
+    try:
+        return float(cell.strip('"'))
+    except ValueError:
+        return None
+
+
+def _text_rows(lines, where):
+    """The rows of numbers of a text matrix (``#`` comments dropped; NaN for a missing cell)."""
+    body = [ln.split("#", 1)[0].rstrip() for ln in lines]
+    body = [(k + 1, ln) for k, ln in enumerate(body) if ln.strip()]
+    if not body:
+        raise InputError(f"path {where} holds no rows of numbers")
+    text = "\n".join(ln for _, ln in body)
+    delimiter = next((d for d in (";", ",", "\t") if d in text), None)
+    decimal_comma = delimiter == ";" and "," in text and "." not in text
+    rows = []
+    for number, line in body:
+        cells = _cells(line.replace(",", ".") if decimal_comma else line, delimiter)
+        values = [_number(c) for c in cells]
+        if any(v is None for v in values):
+            raise InputError(
+                f"path {where}: line {number} ({line.strip()[:60]!r}) is not a row of numbers; a plain height "
+                "matrix holds numbers separated by commas, semicolons, tabs or spaces, with # comments"
+            )
+        rows.append(values)
+    widths = {len(r) for r in rows}
+    if len(widths) > 1:
+        raise InputError(
+            f"path {where}: rows hold different numbers of values ({', '.join(map(str, sorted(widths)))}); "
+            "write a missing point as an empty cell or nan, not by leaving it out"
+        )
+    data = np.array(rows, dtype=float)
+    return data[0] if data.shape[0] == 1 else (data[:, 0] if data.shape[1] == 1 else data)
+
+
+def is_instrument_text(path):
+    """Whether a text file carries an instrument header (sizes, units) that SurfaceTopography
+    reads; such files store one row per y, as an image."""
+    try:
+        with open(path, encoding="utf-8-sig", errors="replace") as f:
+            head = [next(f, "") for _ in range(60)]
+    except OSError:
+        return False
+    return any(_INSTRUMENT_HEADER.match(line) for line in head)
+
+
+def read_matrix(path):
+    """The array a plain height file holds, ``h[ix, iy]`` in the file's own unit (NaN where a
+    point is missing): ``.npy`` as saved, text one row per x (module docstring)."""
+    try:
+        p = Path(path)
+    except TypeError:
+        raise InputError(f"path must be a file path, got {show(path)}") from None
+    where = show(str(p))
+    try:
+        if p.suffix.lower() == ".npy":
+            data = np.load(p, allow_pickle=False)
+        else:
+            data = _text_rows(p.read_text(encoding="utf-8-sig").splitlines(), where)
+        if np.iscomplexobj(data):
+            raise ValueError("heights are complex")
+        data = np.asarray(data, dtype=float)
+    except (OSError, ValueError, TypeError, UnicodeDecodeError) as err:
+        raise InputError(f"path {where} could not be read as heights: {err}") from None
+    if data.ndim not in (1, 2) or min(data.shape) < 2:
+        raise InputError(f"path {where} must hold a line or a map of heights, at least 2 per side; got {data.shape}")
+    return data
+
+
+def pixel_warnings(shape, sizes, given_by):
+    """A sentence when the sizes and the array's shape make pixels that are not square."""
+    if len(shape) != 2:
+        return []
+    dx, dy = (s / n for s, n in zip(sizes, shape))
+    ratio = max(dx, dy) / min(dx, dy)
+    if ratio <= 1 + SQUARE_PIXELS:
+        return []
+    return [
+        f"pixels are {dx:.4g} x {dy:.4g} m ({ratio:.3g} : 1) for a {shape[0]} x {shape[1]} map of "
+        f"{sizes[0]:.4g} x {sizes[1]:.4g} m ({given_by}): axis 0 of the heights is x. If the rows of the "
+        "file run along y (an image), or the array is h[iy, ix], read it with transpose=True (scene: "
+        "[surface] transpose = true), which swaps its axes and sizes"
+    ]
+
+
+def _finish(heights, sizes, *, transpose, periodic, source, given_by):
+    """The Measurement of heights ``h`` (m, NaN where missing) and sizes (m), transposed on
+    request, missing points filled, with the reader's warnings in ``source["warnings"]``."""
+    if transpose and heights.ndim == 2:
+        heights, sizes = heights.T, tuple(reversed(sizes))
+    elif transpose:
+        raise InputError("transpose=True applies to a map, not a line scan")
+    filled, fill_record, notes = fill_missing(heights)
+    notes = notes + pixel_warnings(filled.shape, sizes, given_by)
+    for text in notes:
+        warnings.warn(text, UserWarning, stacklevel=4)
+    source = {**source, **fill_record, "transposed": bool(transpose), "detrend": "none", "warnings": notes}
+    return Measurement(filled, sizes, periodic=periodic, source=source)
+
+
+def _sizes(physical_sizes, ndim, shape):
+    sizes = np.atleast_1d(np.asarray(physical_sizes, dtype=float))
+    if sizes.size != ndim or not np.all(np.isfinite(sizes)) or np.any(sizes <= 0):
+        raise InputError(
+            f"physical_sizes must give one size > 0 per axis of the scan {shape}, got {show(physical_sizes)}"
+        )
+    return tuple(float(v) for v in sizes)
+
+
+def read_topography(path, *, unit=None, physical_sizes=None, channel=0, transpose=False):
+    """Read a topography file into metres: a plain matrix (``.npy``, text) or any format
+    SurfaceTopography reads.
 
     Parameters
     ----------
     path : str or os.PathLike
-        The file.
+        The file. Axes as the module docstring states: a bare matrix is ``h[ix, iy]`` (text: one
+        row per x); instrument formats carry their own.
     unit : str, optional
-        Unit of the heights and lateral sizes when the file has none: ``m``, ``mm``, ``um``
-        (``µm``), ``nm``, ``pm``, ``A``.
+        Unit of the heights and lateral sizes when the file has none (a key of :data:`UNITS`).
     physical_sizes : float or tuple of float, optional
-        Extent of the scan along each axis, in ``unit``, when the file has none.
+        Extent of the scan along each axis of the file, in ``unit``, when the file has none.
     channel : int
-        Which height channel of a multi-channel file (index among its height channels).
+        Which height channel of a multi-channel instrument file (index among its height channels).
+    transpose : bool
+        Swap the file's axes (and sizes): for a file whose rows run the other way.
 
     Returns
     -------
     Measurement
+        ``source`` records the format, units, the filled points and the reader's warnings.
     """
+    p = Path(path)
+    if p.suffix.lower() in MATRIX_SUFFIXES and not (p.suffix.lower() != ".npy" and is_instrument_text(p)):
+        data = read_matrix(p)
+        if unit is None:
+            raise InputError(f"unit is required: the file {show(str(p))} does not store it (one of {', '.join(UNITS)})")
+        if physical_sizes is None:
+            raise InputError(
+                f"physical_sizes is required: the file {show(str(p))} does not store it (the extent along each "
+                f"axis of its {' x '.join(map(str, data.shape))} points, in unit)"
+            )
+        scale = unit_factor(unit)
+        sizes = _sizes(physical_sizes, data.ndim, data.shape)
+        source = {"path": str(p), "format": "matrix", "channel": None, "file_unit": unit}
+        source.update(unit_from_file=False, sizes_from_file=False)
+        given = "physical_sizes as given"
+        return _finish(
+            data * scale,
+            tuple(v * scale for v in sizes),
+            transpose=transpose,
+            periodic=False,
+            source=source,
+            given_by=given,
+        )
     reader = _open(path)
     heights_channels = [c for c in reader.channels if getattr(c, "is_height_channel", True)] or reader.channels
     if not (isinstance(channel, int) and 0 <= channel < len(heights_channels)):
@@ -151,8 +338,8 @@ def read_topography(path, *, unit=None, physical_sizes=None, channel=0):
         )
     info = heights_channels[channel]
     file_unit = info.unit if isinstance(info.unit, str) else None
-    unit_used = _fixed("unit", unit, file_unit, lambda a, b: _SI.get(a) == _SI.get(b))
-    scale = unit_factor(unit_used, "unit")
+    unit_used = _fixed("unit", unit, file_unit, lambda a, b: UNITS.get(a) == UNITS.get(b))
+    scale = unit_factor(unit_used)
     if physical_sizes is not None:
         physical_sizes = tuple(np.atleast_1d(np.asarray(physical_sizes, dtype=float)))
     file_sizes = None if info.physical_sizes is None else tuple(float(s) for s in info.physical_sizes)
@@ -168,43 +355,55 @@ def read_topography(path, *, unit=None, physical_sizes=None, channel=0):
         raise InputError(f"path {str(path)!r} could not be read as a topography: {err}") from None
     if not getattr(topo, "is_uniform", True):
         raise InputError(f"path {str(path)!r} holds a non-uniform line scan; resample it to a uniform grid first")
-    filled = 0
-    if getattr(topo, "has_undefined_data", False):
-        filled = int(np.count_nonzero(np.ma.getmaskarray(topo.heights())))
-        topo = topo.interpolate_undefined_data()
-    heights = np.asarray(np.ma.getdata(topo.heights()), dtype=float) * scale
-    sizes = tuple(float(s) * scale for s in topo.physical_sizes)
-    source = {
-        "path": str(path),
-        "format": reader.format(),
-        "channel": info.name,
-        "file_unit": unit_used,
-        "unit_from_file": file_unit is not None,
-        "sizes_from_file": file_sizes is not None,
-        "filled_points": filled,
-        "detrend": "none",
-    }
-    return Measurement(heights, sizes, periodic=bool(getattr(topo, "is_periodic", False)), source=source)
+    raw = np.ma.asarray(topo.heights(), dtype=float)
+    heights = np.where(np.ma.getmaskarray(raw), np.nan, np.ma.getdata(raw)) * scale
+    source = {"path": str(path), "format": reader.format(), "channel": info.name, "file_unit": unit_used}
+    source.update(unit_from_file=file_unit is not None, sizes_from_file=file_sizes is not None)
+    given = "from the file" if file_sizes is not None else "physical_sizes as given"
+    return _finish(
+        heights,
+        tuple(float(s) * scale for s in topo.physical_sizes),
+        transpose=transpose,
+        periodic=bool(getattr(topo, "is_periodic", False)),
+        source=source,
+        given_by=given,
+    )
 
 
-def from_array(heights, physical_sizes, unit):
-    h = check_array("scan", heights, ndim=(1, 2))
+def from_array(heights, physical_sizes, unit="m", *, transpose=False):
+    """A :class:`Measurement` of an array ``h[ix, iy]`` (or a line ``h[ix]``) in ``unit``, extent
+    ``physical_sizes`` per axis in ``unit``; NaN marks a missing point (filled by the one policy)."""
+    try:
+        h = np.array(heights, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"scan must be an array of real numbers, got {type(heights).__name__}") from None
+    if h.ndim not in (1, 2) or min(h.shape, default=0) < 2:
+        raise InputError(f"scan must be a line or a map of heights, at least 2 per side; got shape {h.shape}")
+    if np.any(np.isinf(h)):
+        raise InputError(
+            f"scan must hold finite heights or NaN for missing points; {np.count_nonzero(np.isinf(h))} inf"
+        )
     if physical_sizes is None:
         raise InputError("physical_sizes (the scan's extent along each axis, in unit) is required with an array")
-    sizes = np.atleast_1d(np.asarray(physical_sizes, dtype=float))
-    if sizes.size != h.ndim or not np.all(np.isfinite(sizes)) or np.any(sizes <= 0):
-        raise InputError(
-            f"physical_sizes must give one size > 0 per axis of the scan {h.shape}, got {show(physical_sizes)}"
-        )
-    f = unit_factor(unit, "unit")
-    return Measurement(h * f, tuple(sizes * f), source={"format": "array", "file_unit": unit, "detrend": "none"})
+    f = unit_factor(unit)
+    sizes = _sizes(physical_sizes, h.ndim, h.shape)
+    source = {"format": "array", "file_unit": unit}
+    return _finish(
+        h * f,
+        tuple(v * f for v in sizes),
+        transpose=transpose,
+        periodic=False,
+        source=source,
+        given_by="physical_sizes",
+    )
 
 
 def load(path, length, *, unit="m", name=None):
-    """Measured topography from a ``.npy``, ``.txt`` or ``.csv`` file.
+    """A plain height file that holds one square periodic cell, as a :class:`~bem.surfaces.Surface`.
 
-    Text files hold one row per x index (a single row or column is a 1-D profile), values
-    separated by commas or whitespace, ``#`` comments allowed.
+    The file is read as every bare matrix is (:func:`read_matrix`: ``.npy`` as saved, text one
+    row per x; a single row or column is a 1-D profile). Missing points are refused here: a
+    periodic cell is taken as it is (use :func:`~bem.surfaces.measured.from_scan` for a scan).
 
     Parameters
     ----------
@@ -212,8 +411,8 @@ def load(path, length, *, unit="m", name=None):
         File with 1-D or square 2-D finite heights, at least 2 per side.
     length : float
         Cell side (m).
-    unit : {"m", "mm", "um", "nm"}
-        Unit of the stored heights; they are converted to m.
+    unit : str
+        Unit of the stored heights (a key of :data:`UNITS`); they are converted to m.
     name : str, optional
         Label (default: the file name without extension).
 
@@ -223,43 +422,25 @@ def load(path, length, *, unit="m", name=None):
         Periodic surface (the cell is treated as periodic by the solvers and statistics).
     """
     length = check_positive("length", length)
-    if unit not in _UNITS:
-        raise InputError(f"unit must be one of {sorted(_UNITS)}, got {show(unit)}")
+    scale = unit_factor(unit)
     try:
         p = Path(path)
     except TypeError:
         raise InputError(f"path must be a file path, got {show(path)}") from None
-    suffix = p.suffix.lower()
-    if suffix not in (".npy", ".txt", ".csv"):
+    if p.suffix.lower() not in (".npy", ".txt", ".csv"):
         raise InputError(f"path must end in .npy, .txt or .csv, got {show(str(p))}")
-    try:
-        if suffix == ".npy":
-            data = np.load(p, allow_pickle=False)
-        else:
-            text = p.read_text()
-            if not text.strip():
-                raise ValueError("the file is empty")
-            lines = text.splitlines()
-            comma = any("," in line.split("#")[0] for line in lines)
-            data = np.loadtxt(lines, delimiter="," if comma else None, comments="#")
-        if np.iscomplexobj(data):
-            raise ValueError("heights are complex")
-        data = np.asarray(data, dtype=float)
-    except (OSError, ValueError, TypeError) as err:
-        raise InputError(f"path {show(str(p))} could not be read as heights: {err}") from None
+    data = read_matrix(p)
     if data.ndim == 2 and data.shape[0] != data.shape[1]:
         raise InputError(
             f"path {show(str(p))} holds a {data.shape[0]} x {data.shape[1]} map; load() reads one square periodic "
-            f"cell. For a scan of any shape (periodic or not) write bem.surfaces.from_scan(np.load(path), "
+            f"cell. For a scan of any shape (periodic or not) write bem.surfaces.from_scan(path, "
             f'physical_sizes=(Lx, Ly), unit=...) (scene: [surface] kind = "measured", path, scan_size = [Lx, Ly], '
-            f"unit; text matrices are then read as images, one row per y)"
+            f"unit)"
         )
-    if data.ndim not in (1, 2):
-        raise InputError(f"path {show(str(p))} must hold 1-D or square 2-D heights, got shape {data.shape}")
-    if data.shape[0] < 2 or not np.all(np.isfinite(data)):
+    if not np.all(np.isfinite(data)):
         raise InputError(
-            f"path {show(str(p))} must hold finite heights, at least 2 per side; "
-            f"got shape {data.shape}, {np.count_nonzero(~np.isfinite(data))} non-finite"
+            f"path {show(str(p))} must hold finite heights; got {np.count_nonzero(~np.isfinite(data))} missing "
+            "(a scan with missing points is read by bem.surfaces.from_scan, which fills them)"
         )
     meta = {"kind": "file", "path": str(p), "unit": unit}
-    return Surface(data * _UNITS[unit], length, name=p.stem if name is None else name, metadata=meta)
+    return Surface(data * scale, length, name=p.stem if name is None else name, metadata=meta)
