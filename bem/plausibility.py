@@ -44,11 +44,12 @@ FAR_DATA = 20.0  # K: a fitted law's curvature is unknown beyond a couple of swe
 
 
 def _likely_unit(value):
-    """The modulus unit a value in Pa most likely was typed in (``MPa`` for 2.4)."""
-    for unit, factor in (("GPa", 1e9), ("MPa", 1e6), ("kPa", 1e3)):
-        if MIN_MODULUS <= value * factor <= MAX_MODULUS and value < MIN_MODULUS:
-            return f"looks like {unit}: multiply by {factor:g}"
-    return "no solid has it"
+    """The modulus unit a value in Pa most likely was typed in: the one that puts it nearest
+    1e7 Pa, a rubber's (``MPa`` for 2.4)."""
+    if not 0 < value < MIN_MODULUS:
+        return "no solid has it"
+    unit, factor = min((("kPa", 1e3), ("MPa", 1e6), ("GPa", 1e9)), key=lambda u: abs(np.log10(value * u[1]) - 7))
+    return f"looks like {unit}: multiply by {factor:g}"
 
 
 def check_moduli(E0, E_inf, *, hint=""):
@@ -60,7 +61,7 @@ def check_moduli(E0, E_inf, *, hint=""):
         if not MIN_MODULUS <= value <= MAX_MODULUS:
             raise InputError(
                 f"{name} must be in [{MIN_MODULUS:g}, {MAX_MODULUS:g}] Pa (the moduli of solids), got "
-                f"{show(value)} Pa ({_likely_unit(value)}{extra})"
+                f"{value:.4g} Pa ({_likely_unit(value)}{extra})"
             )
     if E_inf / E0 > MAX_RATIO:
         raise InputError(
