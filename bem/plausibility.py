@@ -52,12 +52,12 @@ def _likely_unit(value):
     return f"looks like {unit}: multiply by {factor:g}"
 
 
-def check_moduli(E0, E_inf, *, hint=""):
+def check_moduli(E0, E_inf, *, names=("E0", "E_inf"), hint=""):
     """Refuse a relaxed ``E0`` or glassy ``E_inf`` modulus (Pa) that no solid has, or a ratio
-    ``E_inf / E0`` beyond :data:`MAX_RATIO`; ``hint`` is added to the message (how to set the
-    unit where the values came from)."""
+    ``E_inf / E0`` beyond :data:`MAX_RATIO`; ``names`` name the two in the message, ``hint`` is
+    added to it (how to set the unit where the values came from)."""
     extra = f", {hint}" if hint else ""
-    for name, value in (("E0", E0), ("E_inf", E_inf)):
+    for name, value in zip(names, (E0, E_inf)):
         if not MIN_MODULUS <= value <= MAX_MODULUS:
             raise InputError(
                 f"{name} must be in [{MIN_MODULUS:g}, {MAX_MODULUS:g}] Pa (the moduli of solids), got "
@@ -65,8 +65,8 @@ def check_moduli(E0, E_inf, *, hint=""):
             )
     if E_inf / E0 > MAX_RATIO:
         raise InputError(
-            f"E_inf / E0 must be at most {MAX_RATIO:g} (rubbers: 1e2 to 1e4), got {E_inf / E0:.4g} "
-            f"(E0 = {show(E0)} Pa, E_inf = {show(E_inf)} Pa: a modulus in the wrong unit?{extra})"
+            f"{names[1]} / {names[0]} must be at most {MAX_RATIO:g} (rubbers: 1e2 to 1e4), got {E_inf / E0:.4g} "
+            f"({E0:.4g} Pa and {E_inf:.4g} Pa: a modulus in the wrong unit?{extra})"
         )
 
 

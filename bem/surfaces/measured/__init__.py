@@ -9,15 +9,25 @@ defaults. Its steps, one concept per module:
    table; :func:`load` for a plain file holding one square periodic cell;
 2. clean (:mod:`.cleaning`): :func:`detrend`;
 3. cut the square patch and choose its boundary (:mod:`.patch`): :func:`to_surface`,
-   :func:`square_patch`, :func:`cover`, and the load (:func:`cell_load`) and speed
-   (:func:`speed_limit`) that go with a patch;
+   :func:`square_patch`, :func:`cover`, and the load (:func:`cell_load`, which :func:`bem.solve`
+   applies itself) and speed (:func:`speed_limit`) that go with a patch;
 4. make it periodic and put it on the grid (:mod:`.windows`);
 5. compare the scan's spectrum with what the grid keeps (:mod:`.spectrum`): :func:`psd`,
    :func:`psd_report`.
 """
 
 from .cleaning import DETREND_MODES, detrend
-from .patch import BOUNDARIES, cell_load, cover, from_scan, speed_limit, square_patch, to_surface
+from .patch import (
+    BOUNDARIES,
+    cell_load,
+    cover,
+    from_scan,
+    load_factor,
+    speed_limit,
+    speed_limit_warning,
+    square_patch,
+    to_surface,
+)
 from .reading import Measurement, load, read_topography
 from .spectrum import psd, psd_report
 from .windows import DEFAULT_WINDOW, WINDOWS, edge_mismatch, periodic_component
@@ -34,11 +44,13 @@ __all__ = [
     "edge_mismatch",
     "from_scan",
     "load",
+    "load_factor",
     "periodic_component",
     "psd",
     "psd_report",
     "read_topography",
     "speed_limit",
+    "speed_limit_warning",
     "square_patch",
     "to_surface",
 ]

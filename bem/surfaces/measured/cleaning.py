@@ -102,7 +102,9 @@ def find_steps(heights, spacing):
         scale = 1.4826 * np.median(np.abs(d - np.median(d)))
         jumps = np.median(d, axis=tuple(a for a in range(h.ndim) if a != axis)) if h.ndim > 1 else d
         lines = np.flatnonzero(np.abs(jumps) > STEP_DIFFERENCES * max(scale, 1e-300))
-        found += [(axis, int(i), float(jumps[i])) for i in lines]
+        # neighbouring lines are one step spread over a few pixels (a smoothed edge)
+        for run in np.split(lines, np.flatnonzero(np.diff(lines) > 1) + 1) if lines.size else []:
+            found.append((axis, int(run[-1]), float(jumps[run].sum())))
     if not found:
         return []
     flat = h.copy()

@@ -316,19 +316,9 @@ def read_topography(path, *, unit=None, physical_sizes=None, channel=0, transpos
                 f"physical_sizes is required: the file {show(str(p))} does not store it (the extent along each "
                 f"axis of its {' x '.join(map(str, data.shape))} points, in unit)"
             )
-        scale = unit_factor(unit)
-        sizes = _sizes(physical_sizes, data.ndim, data.shape)
         source = {"path": str(p), "format": "matrix", "channel": None, "file_unit": unit}
         source.update(unit_from_file=False, sizes_from_file=False)
-        given = "physical_sizes as given"
-        return _finish(
-            data * scale,
-            tuple(v * scale for v in sizes),
-            transpose=transpose,
-            periodic=False,
-            source=source,
-            given_by=given,
-        )
+        return _given(data, physical_sizes, unit, transpose, source)
     reader = _open(path)
     heights_channels = [c for c in reader.channels if getattr(c, "is_height_channel", True)] or reader.channels
     if not (isinstance(channel, int) and 0 <= channel < len(heights_channels)):
@@ -385,17 +375,14 @@ def from_array(heights, physical_sizes, unit="m", *, transpose=False):
         )
     if physical_sizes is None:
         raise InputError("physical_sizes (the scan's extent along each axis, in unit) is required with an array")
+    return _given(h, physical_sizes, unit, transpose, {"format": "array", "file_unit": unit})
+
+
+def _given(h, physical_sizes, unit, transpose, source):
+    """The Measurement of an array ``h`` in ``unit`` whose sizes the caller gives (in ``unit``)."""
     f = unit_factor(unit)
-    sizes = _sizes(physical_sizes, h.ndim, h.shape)
-    source = {"format": "array", "file_unit": unit}
-    return _finish(
-        h * f,
-        tuple(v * f for v in sizes),
-        transpose=transpose,
-        periodic=False,
-        source=source,
-        given_by="physical_sizes",
-    )
+    sizes = tuple(v * f for v in _sizes(physical_sizes, h.ndim, h.shape))
+    return _finish(h * f, sizes, transpose=transpose, periodic=False, source=source, given_by="physical_sizes as given")
 
 
 def load(path, length, *, unit="m", name=None):
