@@ -5,6 +5,7 @@ there). Its messages name the scene's keys.
 """
 
 import re
+import warnings
 from pathlib import Path
 
 from bem.errors import InputError
@@ -28,7 +29,9 @@ def read_dma(t, base):
         raise InputError(f"[material] dma must be a file path (string), got {t['dma']!r}")
     path = (Path(base) / t["dma"]).resolve()
     try:
-        table = dma.read_dma(path, **{arg: t.get(key) for arg, key in KEYS.items()})
+        with warnings.catch_warnings():  # an assumed unit is reported with the scene's warnings
+            warnings.simplefilter("ignore", UserWarning)
+            table = dma.read_dma(path, **{arg: t.get(key) for arg, key in KEYS.items()})
     except InputError as err:  # the same line, in the scene's words
         raise InputError(f"[material] {_ARGUMENT.sub(lambda m: KEYS[m.group(1)], str(err))}") from None
     return {

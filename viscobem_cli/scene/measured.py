@@ -64,13 +64,15 @@ def surfaces(t, base):
     """The solver surfaces of a ``kind = "measured"`` table: one, or one per square of the scan
     with ``patch = "cover"``; each with its PSD report in ``metadata["measured"]["psd"]``."""
     _check(t)
-    m = measured.read_topography(
-        base / t["path"],
-        unit=t.get("unit"),
-        physical_sizes=t.get("scan_size"),
-        channel=t.get("channel", 0),
-        transpose=t.get("transpose", False),
-    )
+    with warnings.catch_warnings():  # the reader's warnings travel in the record (Scene.warnings)
+        warnings.simplefilter("ignore", UserWarning)
+        m = measured.read_topography(
+            base / t["path"],
+            unit=t.get("unit"),
+            physical_sizes=t.get("scan_size"),
+            channel=t.get("channel", 0),
+            transpose=t.get("transpose", False),
+        )
     patch = t.get("patch", "centre")
     patches = measured.cover(m) if patch == "cover" else [tuple(patch) if isinstance(patch, list) else patch]
     detrend = t.get("detrend", "plane")

@@ -40,7 +40,6 @@ In short (SI units; unknown keys are an error that lists the valid ones)::
 """
 
 import sys
-import warnings as python_warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -358,9 +357,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     from .directions import parse as parse_directions
 
     run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
-    with python_warnings.catch_warnings():  # an assumed DMA unit is reported with the scene's warnings
-        python_warnings.simplefilter("ignore", UserWarning)
-        dma = temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None
+    dma = temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None
     scene = Scene(
         title=str(raw.get("title", Path(source).stem)),
         material=material,
