@@ -236,7 +236,7 @@ def read_dma(path, *, frequency_unit=None, modulus_unit=None, temperature_unit=N
     --------
     >>> import tempfile, pathlib
     >>> path = pathlib.Path(tempfile.mkdtemp()) / "sweep.csv"
-    >>> _ = path.write_text("f (Hz), E' (MPa), E'' (MPa)\n1, 2.0, 0.5\n10, 3.0, 1.0\n")
+    >>> _ = path.write_text("f (Hz), E' (MPa), E'' (MPa)\\n1, 2.0, 0.5\\n10, 3.0, 1.0\\n")
     >>> table = read_dma(path)
     >>> table.frequencies.round(4).tolist(), table.storage.tolist()
     ([6.2832, 62.8319], [2000000.0, 3000000.0])

@@ -33,7 +33,7 @@ def read_dma(t, base):
             warnings.simplefilter("ignore", UserWarning)
             table = dma.read_dma(path, **{arg: t.get(key) for arg, key in KEYS.items()})
     except InputError as err:  # the same line, in the scene's words
-        raise InputError(f"[material] {_ARGUMENT.sub(lambda m: KEYS[m.group(1)], str(err))}") from None
+        raise InputError(f"[material] dma: {_ARGUMENT.sub(lambda m: KEYS[m.group(1)], str(err))}") from None
     return {
         "w": table.frequencies,
         "e1": table.storage,

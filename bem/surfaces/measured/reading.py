@@ -92,7 +92,8 @@ class Measurement:
     periodic : bool
         Whether the file declares the data periodic.
     source : dict
-        Provenance: path, format, channel, file unit, detrending, filled points.
+        Provenance: path, format, channel, file unit, detrending, ``transposed``, the filled
+        points (``filled_points``, ``filled_fraction``) and the reader's ``warnings``.
     """
 
     heights: np.ndarray
