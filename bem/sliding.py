@@ -20,6 +20,7 @@ differences of the heights between element centres (one-sided at the domain's en
 the pressure vanishes).
 """
 
+import dataclasses
 import logging
 import time
 
@@ -28,13 +29,16 @@ import numpy as np
 from . import direction as sliding_direction
 from . import fft
 from .accuracy.assess import assess, check_estimate
+from .accuracy.findings import Finding
 from .checks import check_array, check_int, check_keywords, check_positive, show
 from .contact import ContactOptions, solve_contact
 from .contact.options import MAXITER, RTOL
 from .errors import ConvergenceError, InputError
 from .halfspace.cache import clear_operator_cache, operator_for
 from .materials.material import Material
+from .plausibility import height_checks
 from .result import SlidingResult
+from .surfaces.measured import patch as measured_patch
 from .surfaces.surface import Surface
 
 __all__ = ["SlidingResult", "clear_operator_cache", "operator_for", "solve"]
@@ -57,6 +61,8 @@ def check_inputs(surface, material, speed, load, approach, rtol):
     (e.g. a study checking its range before it writes anything); return them converted,
     ``(surface, speed, load, approach, rtol)``. Raises :class:`~bem.errors.InputError`."""
     surface = _as_surface(surface)
+    if not surface.centered:  # a periodic cell's heights span less than the cell (bem.plausibility)
+        height_checks(surface.heights, surface.length, name="surface heights")
     if not isinstance(material, Material):
         raise InputError(f"material must be a bem.Material, got {type(material).__name__}")
     speed = check_positive("speed", speed, allow_zero=True)
@@ -123,7 +129,12 @@ def solve(
     speed : float
         Sliding speed (m/s) of the surface in ``+x``; 0 gives the relaxed elastic answer.
     load : float, optional
-        Total normal force (N) on the cell, or per unit length (N/m) for a 1-D profile.
+        Total normal force (N) on the cell, or per unit length (N/m) for a 1-D profile. For a
+        measured surface (:func:`bem.surfaces.from_scan`) the force on the scanned patch: a
+        mirrored cell holds the patch 4 times (twice for a profile) and gets that many times the
+        load, the same nominal pressure; the result's ``load`` and ``dissipated_power`` are the
+        patch's again, and its ``warnings`` say when ``speed`` is above the patch's
+        :func:`~bem.surfaces.measured.speed_limit`.
     approach : float, optional
         Displacement control instead of ``load``: rigid approach (m) from first touch.
     periodic : bool
@@ -185,6 +196,12 @@ def solve(
     bem.errors.InputError: solve() got unknown keyword argument 'lod' (did you mean 'load'?); valid: ...
     """
     check_keywords("solve", adaptive_options, ADAPTIVE_OPTIONS + _SOLVE_KEYWORDS)
+    factor = measured_patch.load_factor(surface)
+    if factor is not None:  # a measured patch: the load asked is the patch's
+        options = dict(speed=speed, load=load, approach=approach, periodic=periodic, method=method, rtol=rtol)
+        options.update(maxiter=maxiter, initial=initial, raise_on_failure=raise_on_failure)
+        options.update(contact_options=contact_options, direction=direction, error_estimate=error_estimate)
+        return _on_patch(surface, material, factor, options, adaptive_options)
     surface, speed, load, approach, rtol = check_inputs(surface, material, speed, load, approach, rtol)
     check_estimate(error_estimate)
     # sliding direction (bem.direction): a quarter turn solves along +x on turned heights
@@ -218,6 +235,33 @@ def solve(
     rerun = dict(speed=speed, load=load, approach=approach, periodic=periodic, method=method, rtol=rtol)
     rerun.update(maxiter=maxiter, contact_options=contact_options, direction=theta, warm=True)
     return _assessed(result, surface, material, error_estimate, raise_on_failure, rerun, theta=theta)
+
+
+def _on_patch(surface, material, factor, options, adaptive_options):
+    """:func:`solve` of a measured patch as the user means it: the cell (which holds the patch
+    ``factor`` times) gets ``factor`` times the patch's ``load``; the result gives ``load`` and
+    ``dissipated_power`` on the patch (fields stay the cell's) and the patch's speed-limit
+    warning (:func:`bem.surfaces.measured.speed_limit`)."""
+    if options["load"] is not None:
+        options["load"] = measured_patch.cell_load(surface, check_positive("load", options["load"]))
+    meta = {key: value for key, value in surface.metadata.items() if key != "measured"}
+    cell = dataclasses.replace(surface, metadata=meta)  # solved as the cell it is
+    try:
+        result = solve(cell, material, **options, **adaptive_options)
+    except ConvergenceError as err:
+        if err.result is not None:
+            err.result = _as_asked(err.result, surface, material, factor)
+        raise
+    return _as_asked(result, surface, material, factor)
+
+
+def _as_asked(result, surface, material, factor):
+    """The cell's result on the patch (:func:`_on_patch`)."""
+    text = measured_patch.speed_limit_warning(surface, material, result.speed)
+    found = result.warnings + ((Finding(text, "patch_speed_limit", result.speed),) if text else ())
+    return dataclasses.replace(
+        result, load=result.load / factor, dissipated_power=result.dissipated_power / factor, warnings=found
+    )
 
 
 def _check_method(periodic, method, adaptive_options):

@@ -17,6 +17,7 @@ are gathered by their text.
 """
 
 import math
+import re
 
 __all__ = ["EDGE_LOAD", "WARN", "Finding", "findings_of", "gather"]
 
@@ -170,6 +171,9 @@ def _span(labels):
     return f"{labels[0]}, {labels[1]}, ..., {labels[-1]}"
 
 
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?")
+
+
 def gather(points, *, noun="points"):
     """One sentence per kind of finding over the labelled points of a sweep.
 
@@ -182,7 +186,10 @@ def gather(points, *, noun="points"):
     for label, found in points:
         for f in found:
             f = Finding.from_dict(f)
-            key = f.kind if f.kind != "other" else str(f)
+            # findings measured by a value group by kind; the others (sentences of one kind that
+            # say different things, e.g. a material extrapolated below and above its data) by
+            # their words, so that each keeps its own points
+            key = f.kind if f.value is not None and f.kind != "other" else (f.kind, _NUMBER.sub("#", str(f)))
             groups.setdefault(key, []).append((label, f))
     total = len(points)
     out = []

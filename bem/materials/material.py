@@ -28,6 +28,7 @@ import numpy as np
 
 from ..checks import check_array, check_positive, check_range
 from ..errors import InputError
+from ..plausibility import check_moduli, temperature_warnings
 from . import master_curve
 from .coverage import band_warnings
 from .interconversion import creep_to_prony, prony_to_creep
@@ -98,6 +99,7 @@ class Material:
         E0 = check_positive("E0", self.E0)
         nu = check_range("nu", self.nu, 0.0, 0.5)
         Ek, tk = _sorted_terms(*_check_series("moduli", self.moduli, "Pa", self.relaxation_times))
+        check_moduli(E0, float(E0 + Ek.sum()))  # a solid's moduli (bem.plausibility)
         if Ek.size:
             Ck, lk = prony_to_creep(E0, Ek, tk)
             Ck, lk = _sorted_terms(Ck, lk)
@@ -303,8 +305,10 @@ class Material:
 
         A fitted material's ``fit_report`` moves with it (its band divided by ``a_T``). Where
         the law is used outside its range (``shift.range_warnings(T)``: for WLF below
-        ``T_ref - C2 + 10 K``, for any law a shift of more than 15 decades) the returned
-        material's ``warnings`` say so. A temperature below 100 K (degrees Celsius typed as
+        ``T_ref - C2 + 10 K``, for any law a shift of more than 15 decades), or ``T`` is far
+        outside the temperatures of the data the material was fitted to or, for a law imposed
+        without data, far from its reference temperature (:mod:`bem.plausibility`), the returned
+        material's ``warnings`` say so. A temperature above 1000 K is an InputError. A temperature below 100 K (degrees Celsius typed as
         kelvin), or one whose shift puts the times outside floating point, is an InputError.
         """
         if not callable(shift):
@@ -312,6 +316,8 @@ class Material:
                 f"shift must be a callable giving log10 a_T(T) (e.g. bem.materials.temperature.WLF), got {shift!r}"
             )
         T = check_kelvin("T (K, absolute)", T)
+        data = getattr(self.fit_report, "temperatures", None) or None
+        far = temperature_warnings(T, reference=getattr(shift, "reference_temperature", None), data=data)
         try:
             log_a = float(shift(T))
         except OverflowError:
@@ -328,6 +334,7 @@ class Material:
         factor = 10.0**log_a
         range_warnings = getattr(shift, "range_warnings", None)
         notes = tuple(getattr(self.fit_report, "notes", ())) + (tuple(range_warnings(T)) if range_warnings else ())
+        notes += tuple(far)
         report = self.fit_report.shifted(log_a) if self.fit_report is not None else None
         out = Material(self.E0, self.moduli, self.relaxation_times * factor, self.nu, fit_report=report, warnings=notes)
         creep = self.creep_times * factor

@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 import bem
-from bem.surfaces import measured
 from viscobem_cli import scene as scenes
 from viscobem_cli.main import main
 
@@ -64,7 +63,8 @@ def test_default_patch_is_the_python_entry(folder):
     assert meas["boundary"] == "periodic" and meas["window"] == "mirror" and rec["solver"]["periodic"] is True
     assert meas["source"]["format"] == "nc" and meas["detrend"] == "curvature"
     assert meas["patch_side"] == pytest.approx(380e-6, rel=0.02) and meas["cell_side"] == 2 * meas["patch_side"]
-    assert meas["patch_loads"] == [0.02] and rec["loads"] == [0.08] and meas["load_factor"] == 4
+    assert meas["patch_loads"] == [0.02] and rec["loads"] == [0.02] and meas["load_factor"] == 4
+    assert meas["cell_loads"] == [0.08]
     assert meas["patch"]["fraction_of_scan"] == pytest.approx(76 / 80)
     assert any("only the square" in w for w in rec["warnings"])  # 80 x 76 points: the centred 76 x 76
     assert meas["psd"]["q_grid_max"] == pytest.approx(np.pi * 32 / meas["patch_side"])
@@ -73,7 +73,7 @@ def test_default_patch_is_the_python_entry(folder):
     scene = scenes.load(path)
     with pytest.warns(UserWarning, match="only the square"):
         s = bem.surfaces.from_scan(folder / "scan.nc", 32, detrend="curvature")
-    ref = bem.solve(s, scene.material, speed=0.01, load=measured.cell_load(s, 0.02))
+    ref = bem.solve(s, scene.material, speed=0.01, load=0.02)  # the load on the patch, as the scene's
     assert rec["friction_curve"]["friction"][0] == pytest.approx(ref.friction, rel=1e-12)
 
 
@@ -161,4 +161,5 @@ def test_speeds_beyond_what_the_scan_holds_are_warned_about(folder):
     assert main(["run", str(path), "--out", str(folder / "v"), "--no-progress"]) == 0
     rec = json.loads((folder / "v" / "results.json").read_text())
     assert rec["measured"]["speed_limit"] == pytest.approx(317 * 380e-6 / (2 * np.pi), rel=0.02)
-    assert sum("1 of 2 speeds are above" in w for w in rec["warnings"]) == 1
+    assert sum("is above" in w and "longer than the scanned patch" in w for w in rec["warnings"]) == 1
+    assert any(w.startswith("at xi = 1.32:") and "longer than the scanned patch" in w for w in rec["warnings"])

@@ -15,11 +15,12 @@ periodic or not) on the solver grid, through :func:`bem.surfaces.from_scan` with
     unit = "um"                # only if the file has no unit: unit of heights and sizes
     scan_size = [50, 40]       # only if the file has no size: extent along x, y in `unit`
     channel = 0                # height channel of a multi-channel file
+    transpose = false          # swap the file's axes: for a matrix whose rows run along y
 
-``[loading] load`` is the force on the solved patch (N; N/m for a line scan). A mirrored cell
-holds the patch four times (twice for a line), so the solver gets that many times the load
-(same nominal pressure); ``results.json["loads"]`` are the cell's, ``results.json["measured"]``
-gives ``load_factor`` and ``patch_loads``. ``[solver] periodic`` follows ``boundary`` (a
+``[loading] load`` is the force on the solved patch (N; N/m for a line scan), as in
+:func:`bem.solve`: a mirrored cell holds the patch four times (twice for a line) and gets that
+many times the load (same nominal pressure); ``results.json["loads"]`` are the patch's, as asked,
+and ``results.json["measured"]`` gives ``load_factor``, ``patch_loads`` and ``cell_loads``. ``[solver] periodic`` follows ``boundary`` (a
 contradicting value is an error). With ``patch = "cover"`` each square of the scan is one
 realisation: every number is reported as their mean with a standard error, and
 ``results.json["measured"]["patches"]`` lists them. ``results.json["measured"]`` records the
@@ -35,9 +36,9 @@ import warnings
 from bem.errors import InputError
 from bem.surfaces import measured
 
-__all__ = ["KEYS", "periodic", "surfaces", "patch_loads", "warnings_of"]
+__all__ = ["KEYS", "periodic", "surfaces", "warnings_of"]
 
-KEYS = {"path", "n", "detrend", "boundary", "window", "alpha", "patch", "unit", "scan_size", "channel"}
+KEYS = {"path", "n", "detrend", "boundary", "window", "alpha", "patch", "unit", "scan_size", "channel", "transpose"}
 
 
 def _check(t):
@@ -63,9 +64,15 @@ def surfaces(t, base):
     """The solver surfaces of a ``kind = "measured"`` table: one, or one per square of the scan
     with ``patch = "cover"``; each with its PSD report in ``metadata["measured"]["psd"]``."""
     _check(t)
-    m = measured.read_topography(
-        base / t["path"], unit=t.get("unit"), physical_sizes=t.get("scan_size"), channel=t.get("channel", 0)
-    )
+    with warnings.catch_warnings():  # the reader's warnings travel in the record (Scene.warnings)
+        warnings.simplefilter("ignore", UserWarning)
+        m = measured.read_topography(
+            base / t["path"],
+            unit=t.get("unit"),
+            physical_sizes=t.get("scan_size"),
+            channel=t.get("channel", 0),
+            transpose=t.get("transpose", False),
+        )
     patch = t.get("patch", "centre")
     patches = measured.cover(m) if patch == "cover" else [tuple(patch) if isinstance(patch, list) else patch]
     detrend = t.get("detrend", "plane")
@@ -92,11 +99,6 @@ def surfaces(t, base):
 def warnings_of(surfaces):
     """The surfaces' warnings, each once (the squares of a cover share theirs)."""
     return list(dict.fromkeys(w for s in surfaces for w in s.metadata["measured"]["warnings"]))
-
-
-def patch_loads(surface, loads):
-    """The solver's loads (on the cell) for ``loads`` on the measured patch."""
-    return tuple(measured.cell_load(surface, f) for f in loads)
 
 
 def periodic(t, solver):

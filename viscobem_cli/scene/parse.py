@@ -119,6 +119,7 @@ SCHEMA = {
         "alpha",
         "scan_size",
         "channel",
+        "transpose",
         "patch",
     },  # kind = "measured"
     "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "superposition", "direction_deg"},
@@ -319,10 +320,6 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
         )
     )
     speeds, xi = scene_values.speeds(raw["loading"], tau, xi_length)
-    if kind == "measured":  # the load is on the scanned patch
-        from . import measured
-
-        loads = measured.patch_loads(surface, loads)
     solver = raw.get("solver", {})
     _check_keys(solver, "solver")
     run = scene_values.solver(solver)
@@ -361,6 +358,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     from .directions import parse as parse_directions
 
     run["directions"] = parse_directions(raw["loading"], surface, run["periodic"], run["method"])
+    dma = temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None
     scene = Scene(
         title=str(raw.get("title", Path(source).stem)),
         material=material,
@@ -379,11 +377,11 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
         plot_xi=None if plot_xi is None else float(plot_xi),
         xi_length=float(xi_length),
         xi_time_source=tau_source,
-        warnings=tuple(warnings),
+        warnings=tuple(warnings) + tuple(dma["warnings"] if dma else ()),  # units a DMA table does not name
         fields_precision=precision,
         **run,
         **temperatures.scene_fields(raw, material),
-        dma=temperatures.read_dma(raw["material"], base) if "dma" in raw["material"] else None,
+        dma=dma,
     )
     return temperatures.with_material_warnings(scene)  # what the DMA data do not cover
 

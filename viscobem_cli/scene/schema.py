@@ -178,8 +178,8 @@ KEYS = [
         "",
         None,
         "file: .npy | .txt | .csv; measured: any SurfaceTopography format",
-        "file: square height map (one row per x); measured: the scan (text matrices one row per y); relative to "
-        "the scene file.",
+        "file: square height map; measured: the scan (a bare matrix, .npy or text, is h[ix, iy]: one text row per "
+        "x); relative to the scene file.",
     ),
     Key(
         "surface",
@@ -187,7 +187,7 @@ KEYS = [
         "string",
         "",
         "file: m",
-        "m | mm | um | nm (measured also pm, A)",
+        "m | mm | um (µm, micron) | nm | pm | A",
         "file: unit of the heights; measured: unit of heights and scan_size, only if the file has none.",
     ),
     Key("surface", "radius", "number", "m", None, "> 0", "sphere, cylinder: radius (required)."),
@@ -416,6 +416,15 @@ KEYS += [
         "measured: extent along x, y, only if the file has no size.",
     ),
     Key("surface", "channel", "integer", "", 0, ">= 0", "measured: height channel of a multi-channel file."),
+    Key(
+        "surface",
+        "transpose",
+        "boolean",
+        "",
+        False,
+        "true | false",
+        "measured: swap the file's axes and sizes (for a matrix whose rows run along y, as an image).",
+    ),
     Key(
         "surface",
         "patch",

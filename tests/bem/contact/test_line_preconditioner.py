@@ -40,7 +40,8 @@ def _dense_creep(op):
 def test_symbol_is_elastic_times_creep_along_x():
     op = PeriodicHalfSpace((12, 10), L, RUBBER, FAST)
     assert op.max_phase() > np.pi / 4  # strongly non-symmetric: the case it serves
-    G = dense_operator(PeriodicHalfSpace(op.shape, L, bem.Material.elastic(1.0, nu=RUBBER.nu), 0.0))
+    # the unit-modulus operator, as 1e7 times a solid's of 1e7 Pa (a unit modulus is no solid's)
+    G = 1e7 * dense_operator(PeriodicHalfSpace(op.shape, L, bem.Material.elastic(1e7, nu=RUBBER.nu), 0.0))
     A = dense_operator(op)
     np.testing.assert_allclose(A, G @ _dense_creep(op), rtol=0, atol=1e-12 * np.abs(A).max())
 
@@ -54,11 +55,11 @@ def test_line_preconditioner_is_restricted_creep_inverse_after_elastic_inverse(s
     contact_set[:, 5] = True  # and one in full contact
     idx = np.flatnonzero(contact_set)
     C = _dense_creep(op)
-    elastic = PeriodicHalfSpace(shape, L, bem.Material.elastic(1.0, nu=RUBBER.nu), 0.0)
+    elastic = PeriodicHalfSpace(shape, L, bem.Material.elastic(1e7, nu=RUBBER.nu), 0.0)
     r = rng.standard_normal(idx.size)
     full = np.zeros(op.size)
     full[idx] = r
-    w = elastic.pressure_from_displacement(full.reshape(shape)).ravel()[idx]  # R G^-1 R^T r
+    w = elastic.pressure_from_displacement(full.reshape(shape)).ravel()[idx] / 1e7  # R G^-1 R^T r, unit modulus
     expected = np.linalg.solve(C[np.ix_(idx, idx)], w)
     # the line inverses are stored in float32: exact up to its rounding times the
     # condition number of the line systems
@@ -88,7 +89,7 @@ def test_line_preconditioner_is_restricted_creep_inverse_after_elastic_inverse(s
     r = rng.standard_normal(idx.size)
     full[:] = 0.0
     full[idx] = r
-    w = elastic.pressure_from_displacement(full.reshape(shape)).ravel()[idx]
+    w = elastic.pressure_from_displacement(full.reshape(shape)).ravel()[idx] / 1e7
     got = lines_of(op, contact_set, cache=cache, budget=BUDGET)(r)
     expected = np.linalg.solve(C[np.ix_(idx, idx)], w)
     np.testing.assert_allclose(got, expected, rtol=tol, atol=tol * np.abs(expected).max())

@@ -48,7 +48,7 @@ def test_round_trip_heights_and_sizes_in_metres(fmt, heights, tmp_path):
 
 def test_bare_matrix_needs_unit_and_sizes(heights, tmp_path):
     path = tmp_path / "bare.txt"
-    np.savetxt(path, heights.T)  # instrument text files (and SurfaceTopography) hold one row per y
+    np.savetxt(path, heights)  # a bare matrix is h[ix, iy], one text row per x, as numpy writes it
     with pytest.raises(InputError, match="unit is required"):
         measured.read_topography(path)
     with pytest.raises(InputError, match="physical_sizes is required"):
@@ -120,7 +120,7 @@ def test_periodic_fourier_resampling_is_exact_for_resolved_modes():
 
 
 def test_windows_and_mirror(heights):
-    m = measured.Measurement(heights * 1e-6, (SX * 1e-6, SY * 1e-6))
+    m = measured.Measurement(heights * 1e-8, (SX * 1e-6, SY * 1e-6))  # 10 nm rms: slopes below 1
     patch, side = measured.square_patch(m)
     assert side == pytest.approx(SY * 1e-6) and patch.shape == (NY, NY)
     with pytest.warns(UserWarning, match="only the square"):
@@ -240,7 +240,7 @@ def test_tilted_scan_through_the_api_is_detrended():
     out = []
     for heights in (h, h + tilt):
         s = measured.to_surface(measured.Measurement(heights, (side, side)), 64)
-        load = 3e4 * side**2 * s.metadata["measured"].get("load_factor", 1)
+        load = 3e4 * side**2  # on the patch: bem.solve gives a mirrored cell its share
         out.append(bem.solve(s, mat, speed=0.01, load=load, periodic=not s.centered))
     level, tilted = out
     assert tilted.friction == pytest.approx(level.friction, rel=1e-9)  # the same surface after detrending
@@ -335,9 +335,9 @@ def test_from_scan_inputs():
         bem.surfaces.from_scan(h)
     with pytest.raises(InputError, match="one size > 0 per axis"):
         bem.surfaces.from_scan(h, physical_sizes=(1e-3,))
-    s = bem.surfaces.from_scan(h * 1e6, 16, physical_sizes=(32 * dx * 1e3, 32 * dx * 1e3), unit="mm")
-    ref = bem.surfaces.from_scan(h * 1e3, 16, physical_sizes=(32 * dx, 32 * dx))
-    np.testing.assert_allclose(s.heights, ref.heights, rtol=1e-12)
+    s = bem.surfaces.from_scan(h * 1e3, 16, physical_sizes=(32 * dx * 1e3, 32 * dx * 1e3), unit="mm")
+    ref = bem.surfaces.from_scan(h, 16, physical_sizes=(32 * dx, 32 * dx))
+    np.testing.assert_allclose(s.heights, ref.heights, rtol=1e-12, atol=1e-12 * np.abs(ref.heights).max())
     with pytest.raises(InputError, match="come with the Measurement"):
         bem.surfaces.from_scan(measured.Measurement(h, (1e-3, 1e-3)), unit="um")
     with pytest.raises(InputError, match="n must be"):
@@ -370,7 +370,7 @@ def test_patches_cut_from_a_known_parent_give_its_friction():
         for i in (0, m):
             for j in (0, m):
                 s = measured.to_surface(measured.Measurement(h[i : i + m, j : j + m], (side, side)), m)
-                load = p0 * side**2 * s.metadata["measured"].get("load_factor", 1)
+                load = p0 * side**2  # on the patch
                 res = bem.solve(s, mat, speed=speed, load=load, periodic=not s.centered)
                 assert res.friction_eq6 == pytest.approx(res.friction, rel=0.10)
                 errors.append(res.friction / ref.friction - 1)

@@ -1,0 +1,55 @@
+"""A measured surface is solved as the user means it (issue: the measured patch): bem.solve takes
+the load on the scanned patch, reports it, and warns above the patch's speed limit as the CLI does."""
+
+import numpy as np
+import pytest
+
+import bem
+from bem.accuracy.findings import Finding, gather
+from bem.surfaces import measured
+
+SLS = bem.Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=0.01)
+
+
+@pytest.fixture(scope="module")
+def scan():
+    parent = bem.surfaces.self_affine(64, 1e-3, hurst=0.8, scales=8, rolloff=2, rms_slope=0.1, seed=2)
+    h = np.array(parent.heights)[:40, :40]  # a non-periodic 0.625 mm square
+    return bem.surfaces.from_scan(h, 16, physical_sizes=(0.625e-3, 0.625e-3))
+
+
+def test_solve_takes_the_load_on_the_patch(scan):
+    assert measured.load_factor(scan) == 4  # the mirrored cell holds the patch four times
+    res = bem.solve(scan, SLS, speed=1e-3, load=0.02)
+    cell = bem.surfaces.from_heights(scan.heights, scan.length)  # the same cell, not known as a patch
+    ref = bem.solve(cell, SLS, speed=1e-3, load=0.08)
+    assert res.friction == pytest.approx(ref.friction, rel=1e-12)
+    assert res.load == pytest.approx(0.02, rel=1e-12)  # what was asked
+    assert res.dissipated_power == pytest.approx(ref.dissipated_power / 4, rel=1e-12)
+    # the same nominal pressure as the patch's: 0.02 N over the patch's area
+    assert res.pressure.mean() == pytest.approx(0.02 / (0.625e-3) ** 2, rel=1e-9)
+
+
+def test_solve_and_curve_warn_above_the_patch_speed_limit(scan):
+    limit = measured.speed_limit(scan, SLS)
+    slow = bem.solve(scan, SLS, speed=limit / 10, load=0.02)
+    fast = bem.solve(scan, SLS, speed=limit * 10, load=0.02)
+    assert not any("longer than the scanned patch" in w for w in slow.warnings)
+    assert sum("longer than the scanned patch" in w for w in fast.warnings) == 1
+    curve = bem.friction_curve(scan, SLS, speeds=[limit / 10, limit * 10], load=0.02)
+    said = [w for w in curve.warnings if "longer than the scanned patch" in w]
+    assert len(said) == 1 and said[0].startswith(f"at v = {limit * 10:.3g} m/s")
+
+
+def test_curve_warnings_keep_each_distinct_finding_with_its_own_speeds():
+    low = "the material is extrapolated: the sliding excites frequencies below 0.01 rad/s, 2 decades beyond"
+    high = "the material is extrapolated: the sliding excites frequencies above 1e+05 rad/s, 1 decades beyond"
+    points = [
+        ("v = 0.001 m/s", [Finding(low, "material_data")]),
+        ("v = 0.01 m/s", [Finding(low.replace("0.01 rad", "0.1 rad"), "material_data")]),
+        ("v = 10 m/s", [Finding(high, "material_data")]),
+    ]
+    out = gather(points, noun="speeds")
+    assert len(out) == 2
+    assert out[0].startswith("at 2 of 3 speeds (v = 0.001 m/s, v = 0.01 m/s") and "below" in out[0]
+    assert out[1].startswith("at v = 10 m/s:") and "above" in out[1]
