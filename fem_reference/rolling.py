@@ -25,9 +25,9 @@ from bem.errors import ConvergenceError, InputError
 from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
 from .graded import LAYER_ELEMENTS, SINGLE_TERM_FLOOR, fold_terms, graded_half_space, initial_edges
 from .kinematics import quadrature_operators
-from .linsolve import RESIDUAL_LIMIT, factorize
+from .linsolve import RESIDUAL_LIMIT, available_memory, factorize
 from .mesh import half_space_mesh
-from .rolling_inputs import check_inputs, domain_size, hertz_half_width
+from .rolling_inputs import check_inputs, check_uniform_fits, domain_size, hertz_half_width
 from .rolling_result import RollingResult
 from .steady import steady_operator, stress_and_dissipation
 from .surface import contact_edges, top_surface
@@ -197,7 +197,7 @@ def rolling_cylinder(
     maxiter=100,
     keep_fields=False,
     vtk=None,
-    mesh="uniform",
+    mesh="graded",
     condense="auto",
     layer_floor=0.01,
     passes=8,
@@ -215,9 +215,9 @@ def rolling_cylinder(
     speed : float
         Rolling speed ``V`` (m/s), ``>= 0``.
     resolution : int
-        ``mesh="uniform"``: core elements (9-node) per glassy Hertz half-width
-        ``a_inf``, ``h = a_inf / resolution``. ``mesh="graded"``: elements per contact
-        half-width at the contact edges and at the surface. Node spacing is ``h / 2``.
+        ``mesh="graded"``: elements (9-node) per contact half-width at the contact edges and at
+        the surface. ``mesh="uniform"``: core elements per glassy Hertz half-width ``a_inf``,
+        ``h = a_inf / resolution``. Node spacing is ``h / 2``.
     contact_band : float
         Uniform mesh: half-width of the candidate contact band and of the uniform core,
         in relaxed Hertz half-widths ``a_0``.
@@ -241,11 +241,14 @@ def rolling_cylinder(
     vtk : str or path, optional
         Write the fields to this ``.vtm`` (block and contact interface) or ``.vtu`` (block)
         file, with the metadata (:mod:`fem_reference.vtk`).
-    mesh : {"uniform", "graded"}
-        ``"graded"`` grades the mesh geometrically toward the contact edges and the
-        leading-edge layers (:mod:`fem_reference.graded`) and remeshes until the edges
-        settle (at most ``passes`` meshes); use it for real rubbers (large modulus
-        ratios, many terms).
+    mesh : {"graded", "uniform"}
+        ``"graded"`` (the default) grades the mesh geometrically toward the contact edges and the
+        leading-edge layers (:mod:`fem_reference.graded`) and remeshes until the edges settle (at
+        most ``passes`` meshes): its cost follows the contact, whatever the modulus ratio.
+        ``"uniform"`` meshes a uniform core of ``h = a_inf / resolution`` over the relaxed contact
+        band, whose element count grows with ``E_inf / E0``; where its factor cannot fit in the
+        memory available it is refused before anything is assembled
+        (:func:`fem_reference.rolling_inputs.check_uniform_fits`).
     condense : {"auto", True, False}
         Eliminate the viscous strains through their truncated memory instead of carrying them
         by the elements' outflow values (:mod:`fem_reference.steady`); ``"auto"``: the terms
@@ -316,6 +319,7 @@ def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
     if L < 4 * xb:
         raise InputError(f"domain must be >= 4 * contact_band * a_0 = {4 * xb!r} m, got {L!r}")
     hs = half_space_mesh((-xb, xb), h, x_range=(-L, L), depth=L, core_depth=xb, ratio=ratio)
+    check_uniform_fits(hs.x, hs.y, available_memory())
     try:
         out = _solve_mesh(hs, material, R, P, V, (-xb, xb), active_width=a_inf, **kw)
     except _BandEdge:

@@ -48,3 +48,34 @@ def check_inputs(material, radius, load, speed, resolution, contact_band, maxite
     if mesh not in ("uniform", "graded"):
         raise InputError(f"mesh must be 'uniform' or 'graded', got {mesh!r}")
     return R, P, V, n_res, band, maxiter, ratio, fold
+
+
+# Lower bounds of what the direct solve of a uniform-core mesh holds at once, per unknown ``N`` of its
+# displacement and pressure: the factor's entries over ``N log2 N`` (nested-dissection orderings of a
+# 2-D mesh fill in like that) and the assembled system's entries over ``N``. Measured on the uniform
+# mesh (resolution 6, one condensed term, E_inf/E0 = 3, 10, 30): factor 81, 110, 120 (PARDISO) and
+# 231, 241 (SuperLU); system 408, 481, 412. The smallest of each, so that a mesh refused is one whose
+# solve cannot fit, whatever the solver: the estimate counts 8 bytes per factor entry (its value only)
+# and 12 per system entry (value and column index).
+FACTOR_FILL = 80.0
+SYSTEM_FILL = 400.0
+
+
+def check_uniform_fits(x, y, available):
+    """Refuse a uniform-core mesh (element edges ``x``, ``y``) whose direct solve cannot fit in
+    ``available`` bytes (None: not known, nothing is refused), before anything is assembled.
+
+    The uniform core has ``h = a_inf / resolution`` over the relaxed contact band, so its element
+    count grows like ``resolution^2 E_inf / E0``; the graded mesh's does not.
+    """
+    if available is None:
+        return
+    nx, ny = x.size - 1, y.size - 1
+    n = 2.0 * (2 * nx + 1) * (2 * ny + 1) + 3.0 * nx * ny  # 9-node displacements and 3 pressures each
+    need = 8.0 * FACTOR_FILL * n * np.log2(n) + 12.0 * SYSTEM_FILL * n
+    if need > available:
+        raise InputError(
+            f"mesh='uniform' needs at least {need / 2**30:.3g} GiB for its {n:.3g} unknowns at this resolution "
+            f"and modulus ratio, more than the {available / 2**30:.3g} GiB available: use the default "
+            f"mesh='graded', whose cost does not grow with E_inf/E0, or a lower resolution"
+        )

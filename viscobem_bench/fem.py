@@ -4,12 +4,12 @@ Cases (all SI; R = 10 mm):
 
 - ``rolling``: a standard linear solid (E0 = 1 MPa, E_inf/E0 = 3, nu = 0.5) rolling at
   retardation length ``V lambda = ell a0`` under P = 100 N/m, against Hunter's exact
-  solution (validation.references.hunter): friction and peak-pressure errors over mesh resolution
-  (elements per glassy half-width) and domain size (in units of ``V lambda``);
+  solution (validation.references.hunter): friction and peak-pressure errors of the uniform mesh
+  (``mesh="uniform"``) over its resolution (elements per glassy half-width) and domain size (in units of ``V lambda``);
 - ``solvers``: the same rolling case factorised with SuperLU and, if installed, PARDISO;
 - ``indentation``: creep under a step load (P = 1 N) against Lee & Radok, over mesh
   resolution;
-- ``rubber``: real rubbers on the graded mesh (``mesh="graded"``, SuperLU): an 8-term
+- ``rubber``: real rubbers on the default (graded) mesh with SuperLU: an 8-term
   Prony series with E_inf/E0 = 300 and a 20-term one with E_inf/E0 = 1000 (E0 = 1 MPa,
   relaxation times 1e-5..1e-1 s, equal moduli; R = 20 mm, P = 1500 N/m) at the isolated
   BEM's friction peak and a decade below, against the BEM on 2^14 points (friction,
@@ -75,8 +75,17 @@ def rolling_case(material, ell, resolution, domain_factor, solver="auto", gradin
     V = ell * a0 / material.creep_times[0]
     domain = max(40 * a0, domain_factor * ell * a0)
     t0 = time.perf_counter()
+    # the uniform mesh, whose resolution counts elements per glassy half-width (its convergence in h)
     r = rolling_cylinder(
-        material, radius=R, load=P, speed=V, resolution=resolution, domain=domain, grading=grading, solver=solver
+        material,
+        radius=R,
+        load=P,
+        speed=V,
+        resolution=resolution,
+        domain=domain,
+        grading=grading,
+        solver=solver,
+        mesh="uniform",
     )
     wall = time.perf_counter() - t0
     h = hunter.rolling_cylinder(material, radius=R, load=P, speed=V)
@@ -167,13 +176,7 @@ def _rubber_case(terms, ratio, speed, resolution):
     ref = _rubber_bem(terms, ratio, speed)
     t0, c0 = time.perf_counter(), time.process_time()
     r = rolling_cylinder(
-        _rubber_material(terms, ratio),
-        radius=0.02,
-        load=1500.0,
-        speed=speed,
-        mesh="graded",
-        resolution=resolution,
-        solver="splu",
+        _rubber_material(terms, ratio), radius=0.02, load=1500.0, speed=speed, resolution=resolution, solver="splu"
     )
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     w = ref["width"]
@@ -271,9 +274,7 @@ def high_ratio_case(ratio, speed, resolution, grading, domain_factor=None):
     L = domain_size(m, R, P, speed)
     domain = None if domain_factor is None else domain_factor * L
     t0, c0 = time.perf_counter(), time.process_time()
-    r = rolling_cylinder(
-        m, radius=R, load=P, speed=speed, mesh="graded", resolution=resolution, grading=grading, domain=domain
-    )
+    r = rolling_cylinder(m, radius=R, load=P, speed=speed, resolution=resolution, grading=grading, domain=domain)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     h = hunter.rolling_cylinder(m, radius=R, load=P, speed=speed)
     width = 2 * h.half_width
@@ -382,7 +383,7 @@ def broad_case(name, speed, decades):
     m, R, P = broad_material(name)
     ref = broad_bem(name, speed)
     t0, c0 = time.perf_counter(), time.process_time()
-    r = rolling_cylinder(m, radius=R, load=P, speed=speed, mesh="graded")
+    r = rolling_cylinder(m, radius=R, load=P, speed=speed)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     return {
         "rubber": name,

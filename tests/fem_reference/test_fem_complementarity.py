@@ -74,10 +74,10 @@ def _wrong_set_solver(real):
 
 def test_rolling_success_fails_on_a_wrong_active_set(monkeypatch):
     m = Material.standard_linear_solid(E0=1e6, E_inf=3e6, relaxation_time=0.01, nu=0.5)
-    ok = rolling_cylinder(m, radius=R, load=P, speed=0.01, resolution=2, grading=2.0)
+    ok = rolling_cylinder(m, radius=R, load=P, speed=0.01, resolution=2, grading=2.0, mesh="uniform")
     assert ok.success and ok.residual < COMPLEMENTARITY_LIMIT  # measured 1e-11
     monkeypatch.setattr(rolling, "solve_load_control", _wrong_set_solver(contact.solve_load_control))
-    bad = rolling_cylinder(m, radius=R, load=P, speed=0.01, resolution=2, grading=2.0)
+    bad = rolling_cylinder(m, radius=R, load=P, speed=0.01, resolution=2, grading=2.0, mesh="uniform")
     assert not bad.success and "complementarity" in bad.message
     assert bad.residual > 1e3 * COMPLEMENTARITY_LIMIT
 
@@ -106,7 +106,7 @@ def test_complementarity_limit_follows_a_raised_linear_limit(monkeypatch):
     assert complementarity_limit(linsolve.RESIDUAL_LIMIT) == COMPLEMENTARITY_LIMIT
     assert complementarity_limit(7.8e-6) == 7.8e-6
     m = Material.standard_linear_solid(E0=1e6, E_inf=3e6, relaxation_time=0.01, nu=0.5)
-    kw = dict(radius=R, load=P, speed=0.01, resolution=2, grading=2.0)
+    kw = dict(radius=R, load=P, speed=0.01, resolution=2, grading=2.0, mesh="uniform")
     real = rolling.complementarity_residual
     monkeypatch.setattr(rolling, "complementarity_residual", lambda *a: max(real(*a), 5e-7))
     strict = rolling_cylinder(m, **kw)

@@ -21,7 +21,7 @@ R, P, V = 0.02, 500.0, 3.7074e-4
 @pytest.mark.slow
 def test_fem_against_hunter_at_modulus_ratio_1000():
     m = Material.standard_linear_solid(E0=2e6, E_inf=2e9, relaxation_time=0.01, nu=0.5)
-    r = rolling_cylinder(m, radius=R, load=P, speed=V, mesh="graded")
+    r = rolling_cylinder(m, radius=R, load=P, speed=V)
     h = hunter(m, radius=R, load=P, speed=V)
     assert r.success, r.message
     # the trailing edge's estimate alternated between two meshes half an edge element apart; the
@@ -50,7 +50,7 @@ def test_fem_resolves_the_layer_of_a_standard_solid_below_the_floor():
     m = Material.standard_linear_solid(E0=2e6, E_inf=2e9, relaxation_time=0.01, nu=0.5)
     a0 = (4 * P * R * 0.75 / (math.pi * 2e6)) ** 0.5
     V = 0.3 * a0 / 10.0  # creep time lambda = 10 ms * 1000
-    r = rolling_cylinder(m, radius=R, load=P, speed=V, mesh="graded")
+    r = rolling_cylinder(m, radius=R, load=P, speed=V)
     h = hunter(m, radius=R, load=P, speed=V)
     assert r.success, r.message
     assert r.peak_resolved and r.thinnest_layer == pytest.approx(6.56e-7, rel=0.01), r.warnings

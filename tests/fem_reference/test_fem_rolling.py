@@ -1,7 +1,8 @@
 """Steady rolling FEM (fem_reference.rolling_cylinder) against exact solutions.
 
-Plane strain, rigid cylinder R = 10 mm, P = 100 N/m; materials with E0 = 1 MPa. The
-tolerances come from the measured first-order convergence of the contact quantities in
+Plane strain, rigid cylinder R = 10 mm, P = 100 N/m; materials with E0 = 1 MPa. These tests check
+the uniform mesh (``mesh="uniform"``, ``h = a_inf / resolution``; the default mesh is checked in
+test_fem_default_mesh.py). The tolerances come from the measured first-order convergence of the contact quantities in
 the core element size h (peak pressure 0.81 / 0.39 / 0.12 % and half-width 1.5 / 0.66 /
 0.31 % at 2 / 4 / 8 elements per half-width, nu = 0.3; see test_mesh_convergence) plus the
 truncation error ~0.3 (a/H)^2 < 0.02 % of the default block.
@@ -34,7 +35,7 @@ def test_hertz_elastic(nu):
     # 4 elements (8 node spacings) per half-width: measured errors 0.4 % (p0) and 0.7-0.9 %
     # (edges); tolerances 1 % and 1.5 % hold the first-order error with a margin of ~2.
     m = Material.elastic(1e7, nu=nu)
-    r = rolling_cylinder(m, radius=R, load=P, speed=1.0, resolution=4)
+    r = rolling_cylinder(m, radius=R, load=P, speed=1.0, resolution=4, mesh="uniform")
     hz = line_contact(1e7, nu, R, P)
     assert r.peak_pressure == pytest.approx(hz.p0, rel=0.01)
     assert r.leading_edge == pytest.approx(hz.a, rel=0.015)
@@ -55,7 +56,7 @@ def test_relaxed_limit():
     # the mesh's relative accuracy.
     m = sls(3.0)
     V = speed_for(m, 1e-4)
-    r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=4, grading=1.5)
+    r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=4, grading=1.5, mesh="uniform")
     hz = line_contact(m.E0, m.nu, R, P)
     assert r.peak_pressure == pytest.approx(hz.p0, rel=0.01)
     assert r.leading_edge == pytest.approx(hz.a, rel=0.015)
@@ -72,7 +73,7 @@ def test_glassy_limit(ell):
     # digits as 1.5); 3 elements per half-width give ~0.7 % (p0) and ~0.3 % (edges);
     # tolerances 1 % and 2 %.
     m = sls(3.0)
-    r = rolling_cylinder(m, radius=R, load=P, speed=speed_for(m, ell), resolution=3, grading=2.0)
+    r = rolling_cylinder(m, radius=R, load=P, speed=speed_for(m, ell), resolution=3, grading=2.0, mesh="uniform")
     hz = line_contact(m.E_inf, m.nu, R, P)
     assert r.domain_width >= 30 * ell * line_contact(m.E0, m.nu, R, P).a * 0.999
     assert r.peak_pressure == pytest.approx(hz.p0, rel=0.01)
@@ -88,7 +89,7 @@ def test_hunter():
     m = sls(3.0)
     for ell in (0.3, 3.0):
         V = speed_for(m, ell)
-        r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=3, grading=1.3)
+        r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=3, grading=1.3, mesh="uniform")
         h = hunter.rolling_cylinder(m, radius=R, load=P, speed=V)
         assert r.friction == pytest.approx(h.friction, rel=0.01)
         assert r.peak_pressure == pytest.approx(h.peak_pressure, rel=0.01)
@@ -103,7 +104,7 @@ def test_hunter_high_speed():
     # Tolerance 1 % on the dissipation form and the peak pressure (measured 0.6 %).
     m = sls(3.0)
     V = speed_for(m, 100.0)
-    r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=3, grading=2.0)
+    r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=3, grading=2.0, mesh="uniform")
     h = hunter.rolling_cylinder(m, radius=R, load=P, speed=V)
     assert r.friction_dissipation == pytest.approx(h.friction, rel=0.01)
     assert r.peak_pressure == pytest.approx(h.peak_pressure, rel=0.01)
@@ -116,7 +117,7 @@ def test_dissipation_balance_and_signs():
     # of both forms: measured 0.13 % apart, and 0.08 % / 0.05 % from Hunter, at
     # V lambda = 3 a0 with 4 elements per half-width); tolerance 1 %.
     m = sls(3.0)
-    r = rolling_cylinder(m, radius=R, load=P, speed=speed_for(m, 3.0), resolution=4, grading=1.5)
+    r = rolling_cylinder(m, radius=R, load=P, speed=speed_for(m, 3.0), resolution=4, grading=1.5, mesh="uniform")
     assert r.friction > 0
     assert r.friction_dissipation == pytest.approx(r.friction, rel=0.01)
     assert r.dissipated_power == pytest.approx(r.friction * P * r.speed, rel=0.01)  # field vs moment
@@ -136,7 +137,7 @@ def test_mesh_convergence():
     res = np.array([2, 4, 8])
     e_a, e_p = [], []
     for n in res:
-        r = rolling_cylinder(m, radius=R, load=P, speed=0.0, resolution=int(n))
+        r = rolling_cylinder(m, radius=R, load=P, speed=0.0, resolution=int(n), mesh="uniform")
         e_a.append(abs(r.leading_edge / hz.a - 1))
         e_p.append(abs(r.peak_pressure / hz.p0 - 1))
     rate_a = -np.polyfit(np.log(res), np.log(e_a), 1)[0]
@@ -173,7 +174,9 @@ def test_material_must_be_a_material():
 def test_active_set_limit_raises():
     m = sls(3.0)
     with pytest.raises(ConvergenceError):
-        rolling_cylinder(m, radius=R, load=P, speed=speed_for(m, 1.0), resolution=2, grading=1.5, maxiter=1)
+        rolling_cylinder(
+            m, radius=R, load=P, speed=speed_for(m, 1.0), resolution=2, grading=1.5, maxiter=1, mesh="uniform"
+        )
 
 
 def test_inactive_prony_terms_are_folded():
@@ -185,8 +188,8 @@ def test_inactive_prony_terms_are_folded():
     base = Material.standard_linear_solid(E0=2e6, E_inf=4e6, relaxation_time=0.01, nu=0.5)
     m3 = Material.from_prony(E0=1e6, moduli=[2e6, 5e5, 1e6], times=[0.01, 1e-12, 1e6], nu=0.5)
     V = speed_for(base, 1.0)
-    r3 = rolling_cylinder(m3, radius=R, load=P, speed=V, resolution=3, grading=1.5)
-    rb = rolling_cylinder(base, radius=R, load=P, speed=V, resolution=3, grading=1.5)
+    r3 = rolling_cylinder(m3, radius=R, load=P, speed=V, resolution=3, grading=1.5, mesh="uniform")
+    rb = rolling_cylinder(base, radius=R, load=P, speed=V, resolution=3, grading=1.5, mesh="uniform")
     assert r3.material.E0 == pytest.approx(2e6) and r3.material.moduli.size == 1
     assert r3.friction == pytest.approx(rb.friction, rel=0.02)
     with pytest.raises(InputError, match="fold"):
@@ -206,7 +209,7 @@ def test_multi_term_prony_low_speed():
     m = Material.from_prony(E0=1e6, moduli=[1e6, 1e6, 1e6], times=[1e-3, 1e-2, 1e-1], nu=0.5)
     a0 = line_contact(m.E0, m.nu, R, P).a
     V = 1e-3 * a0 / m.creep_times.max()
-    r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=2, fold=0)
+    r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=2, fold=0, mesh="uniform")
     assert r.material.moduli.size == 3
     mu_low = V * m.E0 / R * np.sum(m.compliances * m.creep_times)
     assert r.friction_dissipation == pytest.approx(mu_low, rel=0.1)

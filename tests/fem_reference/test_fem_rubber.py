@@ -155,7 +155,7 @@ def test_rolling_reports_linear_residual_and_success():
     m = rubber(3, 30, nu=0.5)
     # a slow roll on a coarse mesh: short memory reaches, so a cheap factorisation (the residual's
     # bookkeeping does not depend on either)
-    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, mesh="graded", resolution=2, solver="splu")
+    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, resolution=2, solver="splu")
     assert r.success and r.message == "converged"
     assert 0 < r.linear_residual <= r.linear_residual_limit == 1e-8 and r.solver == "splu"
     assert len(r.condensed) == len(r.terms["kept"]) and r.passes >= 1
@@ -168,7 +168,7 @@ def test_rolling_reports_linear_residual_and_success():
 def test_graded_mesh_that_did_not_settle_says_so():
     # one mesh, focused on the edges of the Hertz estimate: the solution's edges are elsewhere
     m = rubber(3, 30, nu=0.5)
-    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, mesh="graded", resolution=2, solver="splu", passes=1)
+    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, resolution=2, solver="splu", passes=1)
     (note,) = [w for w in r.warnings if "did not settle" in w]
     assert "in 1 passes" in note and r.passes == 1
     assert r.peak_resolved == (r.thinnest_layer >= LAYER_ELEMENTS * r.smallest_element)
@@ -182,13 +182,13 @@ def test_friction_forms_that_disagree_say_so(monkeypatch):
     from viscobem_bench.fem import broad_material
 
     m, R2, P2 = broad_material("equal20")
-    r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6, mesh="graded")
+    r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6)
     gap = abs(r.friction_dissipation / r.friction - 1)
     assert gap == pytest.approx(0.020, abs=0.003)
     (note,) = [w for w in r.warnings if "forms of the friction differ" in w]
     assert f"{gap:.2%}" in note
     monkeypatch.setattr(rolling, "FORM_GAP", 0.05)
-    r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6, mesh="graded")
+    r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6)
     assert not [w for w in r.warnings if "forms of the friction differ" in w]
 
 
@@ -199,9 +199,7 @@ def test_state_form_and_condensed_rolling_agree():
     # (dissipation form) apart; SuperLU 11 s / 15 s CPU (43,700 / 12,650 unknowns)
     m = rubber(3, 30)
     runs = {
-        c: rolling_cylinder(
-            m, radius=R, load=P, speed=1e-3, mesh="graded", resolution=3, solver="splu", condense=c, passes=1
-        )
+        c: rolling_cylinder(m, radius=R, load=P, speed=1e-3, resolution=3, solver="splu", condense=c, passes=1)
         for c in (False, True)
     }
     assert runs[False].condensed == (False,) * 3 and runs[True].condensed == (True,) * 3
@@ -229,7 +227,7 @@ def test_bad_linear_solve_fails(monkeypatch):
 
     monkeypatch.setattr(linsolve, "_SuperLU", Wrong)
     m = rubber(3, 30)
-    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, mesh="graded", resolution=2, solver="splu")
+    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, resolution=2, solver="splu")
     assert not r.success and "linear solve residual" in r.message and r.linear_residual > 1e-8
 
 
@@ -259,7 +257,7 @@ def test_rubber_against_isolated_bem_at_friction_peak():
     act = np.flatnonzero(b.pressure > 0)
     dx = s.x[1] - s.x[0]
     lead, trail = s.x[act[-1]] + dx / 2, s.x[act[0]] - dx / 2
-    r = rolling_cylinder(m, radius=R2, load=P2, speed=V, mesh="graded", resolution=6, solver="splu")
+    r = rolling_cylinder(m, radius=R2, load=P2, speed=V, resolution=6, solver="splu")
     width = lead - trail
     assert r.success and r.linear_residual < 1e-8
     assert r.friction_dissipation == pytest.approx(b.friction, rel=0.01)
@@ -277,7 +275,7 @@ def _broad_rubber_against_the_bem(name, V):
 
     m, R2, P2 = broad_material(name)
     ref = broad_bem(name, V)
-    r = rolling_cylinder(m, radius=R2, load=P2, speed=V, mesh="graded")
+    r = rolling_cylinder(m, radius=R2, load=P2, speed=V)
     print(f"{name} at {V:g} m/s: {r.n_unknowns} unknowns, {r.solver}, peak RSS {r.peak_memory:.0f} MiB")
     assert r.success and r.linear_residual <= r.linear_residual_limit
     assert r.friction == pytest.approx(ref, rel=0.01)
@@ -505,7 +503,7 @@ def test_pardiso_solve_deflated_where_refinement_stalls():
 def test_pardiso_deflates_before_a_many_column_solve_where_its_refinement_is_slow(monkeypatch):
     import ctypes
 
-    # E_inf/E0 = 3 standard solid at s = 100, resolution 2 (15,147 unknowns), PARDISO on one thread
+    # E_inf/E0 = 3 standard solid at s = 100, uniform mesh at resolution 2 (15,147 unknowns), PARDISO on one thread
     # (its pivots, and so its refinement, depend on the thread count): it perturbs 3 pivots and its
     # own refinement takes its maximum of 20 steps per solve (measured), each a solve of every column
     # of the flexibility. Probed on one column, the factor is deflated first: no solve of several
@@ -534,11 +532,11 @@ def test_pardiso_deflates_before_a_many_column_solve_where_its_refinement_is_slo
     threads = mkl.mkl_get_max_threads()
     mkl.MKL_Set_Num_Threads(ctypes.c_int(1))
     try:
-        r = rolling_cylinder(m, radius=R3, load=P3, speed=V, resolution=2, solver="pardiso")
+        r = rolling_cylinder(m, radius=R3, load=P3, speed=V, resolution=2, solver="pardiso", mesh="uniform")
     finally:
         mkl.MKL_Set_Num_Threads(ctypes.c_int(threads))
     monkeypatch.setattr(linsolve._Pardiso, "_plain", plain)
     assert r.success and costly and max(costly) <= linsolve.DEFLATE_STEPS
-    ref = rolling_cylinder(m, radius=R3, load=P3, speed=V, resolution=2, solver="splu")
+    ref = rolling_cylinder(m, radius=R3, load=P3, speed=V, resolution=2, solver="splu", mesh="uniform")
     assert r.friction == pytest.approx(ref.friction, rel=1e-9)
     assert r.friction_dissipation == pytest.approx(ref.friction_dissipation, rel=1e-9)

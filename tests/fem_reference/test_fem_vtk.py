@@ -108,15 +108,7 @@ def test_interface_of_a_graded_mesh_whose_band_is_not_symmetric(tmp_path):
 
     m = Material.from_prony(E0=1e6, moduli=np.full(3, 29e6 / 3), times=[1e-5, 1e-3, 1e-1], nu=0.5)
     r = rolling_cylinder(
-        m,
-        radius=0.01,
-        load=100.0,
-        speed=1e-3,
-        mesh="graded",
-        resolution=1,
-        solver="splu",
-        keep_fields=True,
-        vtk=tmp_path / "g.vtm",
+        m, radius=0.01, load=100.0, speed=1e-3, resolution=1, solver="splu", keep_fields=True, vtk=tmp_path / "g.vtm"
     )
     top = top_surface(r.fields["basis"])
     # the case has teeth: a band symmetric about x = 0 would hold more nodes than the result

@@ -36,7 +36,7 @@ QUICK = dict(
     speeds=[1e-3, 1e-2],
     cells=10,
     ref_cells=20,
-    fem=dict(material=None, speeds=[1e-3], resolution=2, options=dict(mesh="graded"), note=""),
+    fem=dict(material=None, speeds=[1e-3], resolution=2, note=""),
     tol=dict(
         bem=dict(l2=0.02, friction=1.5e-3, edge=0.75, peak=7e-3, peak_speeds=[1e-2]),
         fem=dict(l2=0.1, friction=0.02, friction_moment=3e-3, edge=1.5, peak=None, peak_speeds=[], balance=0.04),
@@ -99,7 +99,7 @@ FULL = dict(
     speeds=[1.78e-4, 1.78e-3],
     cells=20,
     ref_cells=40,
-    fem=dict(material=None, speeds=[1.78e-4, 1.78e-3], resolution=6, options=dict(mesh="graded"), note=""),
+    fem=dict(material=None, speeds=[1.78e-4, 1.78e-3], resolution=6, note=""),
     tol=dict(
         bem=dict(
             l2=0.035,
