@@ -30,6 +30,7 @@ __all__ = [
     "MAX_KELVIN",
     "FAR_KELVIN",
     "FAR_DATA",
+    "MODULUS_UNITS",
     "check_moduli",
     "height_checks",
     "temperature_warnings",
@@ -41,6 +42,7 @@ MAX_RATIO = 1e6  # E_inf / E0: rubbers span 1e2 to 1e4, no material 1e6
 MAX_KELVIN = 1000.0  # K: polymers have decomposed well below
 FAR_KELVIN = 100.0  # K: WLF holds from about T_g to T_g + 100 K; no law is measured over more
 FAR_DATA = 20.0  # K: a fitted law's curvature is unknown beyond a couple of sweep spacings (~10 K)
+MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}  # the one table of modulus units
 
 
 def _likely_unit(value):
@@ -48,7 +50,8 @@ def _likely_unit(value):
     1e7 Pa, a rubber's (``MPa`` for 2.4)."""
     if not 0 < value < MIN_MODULUS:
         return "no solid has it"
-    unit, factor = min((("kPa", 1e3), ("MPa", 1e6), ("GPa", 1e9)), key=lambda u: abs(np.log10(value * u[1]) - 7))
+    larger = [(unit, factor) for unit, factor in MODULUS_UNITS.items() if factor > 1]
+    unit, factor = min(larger, key=lambda u: abs(np.log10(value * u[1]) - 7))
     return f"looks like {unit}: multiply by {factor:g}"
 
 

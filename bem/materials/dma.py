@@ -33,13 +33,12 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..plausibility import check_moduli
+from ..plausibility import MODULUS_UNITS, check_moduli
 from .temperature import MIN_KELVIN
 
 __all__ = ["DMATable", "FREQUENCY_UNITS", "MODULUS_UNITS", "TEMPERATURE_OFFSETS", "QUANTITIES", "read_dma"]
 
 FREQUENCY_UNITS = {"rad/s": 1.0, "Hz": 2 * np.pi}
-MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
 TEMPERATURE_OFFSETS = {"K": 0.0, "C": 273.15}
 QUANTITIES = ("frequency", "storage", "loss", "temperature")
 ASSUMED = {"frequency": "rad/s", "storage": "Pa", "temperature": "K"}
