@@ -11,7 +11,8 @@ edge lands anywhere within a cell), so on any one case it is a typical value, no
 The constants below were fitted once, on 97 solves of 2-D rough cells, 1-D rough profiles,
 cylinders and spheres (standard solid and rubbers of 4 to 12 terms, ``E_inf/E0`` 3 to 1000,
 speeds five decades about the friction peak, 1 % to 97 % contact), each against its solve on
-the grid twice as fine; they are checked on other cases in ``tests/bem/test_accuracy.py``.
+the grid twice as fine; the peak weights were set on the tuning cases of ``viscobem bench
+coverage``, which also measures all of them on cases held out from tuning (docs/theory.md §13.5).
 """
 
 from collections.abc import Mapping
