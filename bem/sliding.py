@@ -86,6 +86,7 @@ ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling"
 _SOLVE_KEYWORDS = (
     "speed",
     "load",
+    "nominal_pressure",
     "approach",
     "periodic",
     "method",
@@ -107,6 +108,7 @@ def solve(
     speed,
     load=None,
     approach=None,
+    nominal_pressure=None,
     periodic=True,
     method="auto",
     rtol=RTOL,
@@ -137,6 +139,11 @@ def solve(
         :func:`~bem.surfaces.measured.speed_limit`.
     approach : float, optional
         Displacement control instead of ``load``: rigid approach (m) from first touch.
+    nominal_pressure : float, optional
+        Load control by the mean pressure (Pa) instead of ``load``: the load is this pressure times
+        the cell's area (its length for a 1-D profile, giving N/m). For a measured surface the same
+        pressure on the scanned patch, whatever the boundary treatment made of its cell. Give
+        exactly one of ``load``, ``nominal_pressure`` and ``approach``.
     periodic : bool
         ``True``: periodic cell (:mod:`bem.halfspace.periodic`). ``False``: isolated contact on a
         half-space, the array being the whole loaded domain (:mod:`bem.halfspace.isolated`), e.g.
@@ -197,6 +204,8 @@ def solve(
     """
     check_keywords("solve", adaptive_options, ADAPTIVE_OPTIONS + _SOLVE_KEYWORDS)
     factor = measured_patch.load_factor(surface)
+    if nominal_pressure is not None or (load is None and approach is None):
+        load = _load_of_pressure(surface, nominal_pressure, load, approach, factor)
     if factor is not None:  # a measured patch: the load asked is the patch's
         options = dict(speed=speed, load=load, approach=approach, periodic=periodic, method=method, rtol=rtol)
         options.update(maxiter=maxiter, initial=initial, raise_on_failure=raise_on_failure)
@@ -235,6 +244,26 @@ def solve(
     rerun = dict(speed=speed, load=load, approach=approach, periodic=periodic, method=method, rtol=rtol)
     rerun.update(maxiter=maxiter, contact_options=contact_options, direction=theta, warm=True)
     return _assessed(result, surface, material, error_estimate, raise_on_failure, rerun, theta=theta)
+
+
+def _load_of_pressure(surface, nominal_pressure, load, approach, factor):
+    """The load (N, or N/m for profiles; on the scanned patch for a measured surface) that puts
+    ``nominal_pressure`` (Pa) on the cell; :class:`~bem.errors.InputError` unless exactly one of
+    ``load``, ``nominal_pressure`` and ``approach`` is given."""
+    given = [
+        name
+        for name, v in (("load", load), ("nominal_pressure", nominal_pressure), ("approach", approach))
+        if v is not None
+    ]
+    if len(given) != 1:
+        raise InputError(
+            "give exactly one of load (N, or N/m for profiles; on the scanned patch for a measured surface), "
+            "nominal_pressure (Pa, the mean pressure) or approach (m; displacement control), got "
+            + (" and ".join(given) if given else "none of them")
+        )
+    surface = _as_surface(surface)
+    cell_load = check_positive("nominal_pressure", nominal_pressure) * surface.length**surface.ndim
+    return cell_load if factor is None else cell_load / factor
 
 
 def _on_patch(surface, material, factor, options, adaptive_options):

@@ -7,7 +7,7 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
     viscobem scene [NAME]                     print a built-in scene (default: the template)
     viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem,
                                               fem_convergence, isolated, rubber_speeds, curve,
-                                              broadband, import, materials, measured, accuracy);
+                                              broadband, import, materials, measured, accuracy, coverage);
                                               writes only under DIR
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
@@ -326,6 +326,7 @@ def build_parser():
             "materials",
             "measured",
             "accuracy",
+            "coverage",
             "friction_map",
         ],
         help="all (default: every solver, scaling, skipping), one detailed benchmark "
@@ -333,7 +334,8 @@ def build_parser():
         "import (import time of bem against numpy + scipy), materials (Prony fits "
         "and master curves against pyvisco), measured (boundary treatments of measured scans: "
         "patches cut from known surfaces), accuracy (the error estimate's cost and its "
-        "agreement with the twice-finer solve), or friction_map (friction over speed and temperature from "
+        "agreement with the twice-finer solve), coverage (the estimate against the twice-finer solve "
+        "over 240 seeded cases, tuning and held out), or friction_map (friction over speed and temperature from "
         "one curve, against direct solves and one curve's cost)",
     )
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")

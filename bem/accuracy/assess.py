@@ -37,6 +37,9 @@ def indicators_of(result, surface, material, *, periodic, direction=0.0):
     contact = p > 0
     cells = int(np.count_nonzero(contact))
     sharp, to_edge = ind.peak_sharpness(p, periodic)
+    spike, growth = ind.leading_edge_layers(
+        p, material, result.speed, surface.spacing, periodic=periodic, direction=direction
+    )
     out = {
         "contact_cells": cells,
         "contact_edge_faces": int(round(ind.contact_perimeter(contact, periodic) * cells)),
@@ -47,6 +50,8 @@ def indicators_of(result, surface, material, *, periodic, direction=0.0):
         "peak_sharpness": sharp,
         "peak_cells_to_edge": to_edge,
         "subcell_layers": ind.subcell_layers(material, result.speed, surface.spacing),
+        "edge_spike": spike,
+        "edge_growth": growth,
         "spacing": surface.spacing,
         "form_gap": ind.form_gap(result.friction, result.friction_eq6),
         # the heights' spectrum means nothing across an isolated domain's edges

@@ -11,14 +11,15 @@ edge lands anywhere within a cell), so on any one case it is a typical value, no
 The constants below were fitted once, on 97 solves of 2-D rough cells, 1-D rough profiles,
 cylinders and spheres (standard solid and rubbers of 4 to 12 terms, ``E_inf/E0`` 3 to 1000,
 speeds five decades about the friction peak, 1 % to 97 % contact), each against its solve on
-the grid twice as fine; they are checked on other cases in ``tests/bem/test_accuracy.py``.
+the grid twice as fine; the peak weights were set on the tuning cases of ``viscobem bench
+coverage``, which also measures all of them on cases held out from tuning (docs/theory.md §13.5).
 """
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
-__all__ = ["QUANTITIES", "ErrorEstimate", "from_indicators", "not_estimated"]
+__all__ = ["QUANTITIES", "ErrorEstimate", "from_indicators", "not_estimated", "unresolved_peak", "unresolved_reason"]
 
 QUANTITIES = ("friction", "contact_fraction", "peak_pressure")
 
@@ -35,11 +36,11 @@ AREA_RANDOM = 0.2
 FRICTION_WEIGHT = {1: 2.0, 2: 1.0}
 FRICTION_ROUGHNESS = 0.5
 # Peak pressure: a share of how far the peak stands above its neighbours (a smooth maximum
-# sampled anywhere within a cell moves by ~1/12 of that), twice that for a peak on the contact's
-# edge, a pressure rising from zero within one cell, whose sampled value follows where the edge
-# falls in the cell (measured median ratio of error to sharpness: 0.15 inside, 0.33 on the edge).
+# sampled anywhere within a cell moves by ~1/12 of that). Measured median ratio of error to
+# sharpness on the tuning cases of ``viscobem bench coverage``: 0.14 to 0.24 for a peak inside
+# the contact, 0.12 on the contact's edge, 0.085 two cells from it.
 PEAK_WEIGHT = 0.15
-PEAK_EDGE_WEIGHT = 0.3
+PEAK_EDGE_WEIGHT = {1: 0.12, 2: 0.085}
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,6 +124,26 @@ def not_estimated(reason, method="none"):
     return ErrorEstimate({}, method=method, reasons={q: reason for q in QUANTITIES})
 
 
+def unresolved_peak(ind):
+    """Whether the peak pressure lies in leading-edge layers thinner than a cell: the pressure inside
+    the edge cell rises above the grid's peak (``edge_spike > 1``) and a grid twice as fine raises
+    the edge cell's pressure (``edge_growth > 1``), as it keeps doing until the cells are as thin as
+    the layers (docs/theory.md §13.4)."""
+    return ind.get("edge_spike", 0.0) > 1.0 and ind.get("edge_growth", 0.0) > 1.0
+
+
+def unresolved_reason(ind):
+    """The sentence that says why the peak pressure has no estimate."""
+    layers = ind.get("subcell_layers") or []
+    thinnest = f"{min(t[1] for t in layers) * ind['spacing']:.2g} m" if layers else "below a cell"
+    return (
+        f"unresolved: leading-edge layers V tau_k thinner than a cell ({len(layers)} Prony term(s), down to "
+        f"{thinnest}, cells of {ind['spacing']:.2g} m) raise the pressure inside the edge cell to "
+        f"{ind['edge_spike']:.2g} times the grid's peak, and every finer grid that is still coarser than "
+        f"the layers shows a higher one (the edge cell's pressure grows {ind['edge_growth']:.2g}x per halving)"
+    )
+
+
 def from_indicators(ind, ndim):
     """The default estimate from the indicators of :func:`bem.accuracy.assess.indicators_of`.
 
@@ -130,15 +151,19 @@ def from_indicators(ind, ndim):
     ``friction = w_d m4 / (1 + R / 0.5)`` with ``w_1 = 2``, ``w_2 = 1``, ``m4`` the dissipation
     moment and ``R`` the interior roughness (``None`` where nothing dissipates: friction is then
     zero on every grid and has no relative error); ``peak_pressure = 0.15 (p_max - mean of its
-    neighbours) / p_max``, 0.3 times it for a peak on the contact's edge.
+    neighbours) / p_max``, 0.12 times it for a peak on the contact's edge and 0.085 two cells from
+    it; ``None`` where it lies in leading-edge layers thinner than a cell (:func:`unresolved_peak`).
     """
     values, reasons = {}, {}
     cells = ind["contact_cells"]
     if cells:
         faces = ind["contact_edge_faces"]
         values["contact_fraction"] = (AREA_PER_FACE * faces + AREA_RANDOM * faces**0.5) / cells
-        weight = PEAK_EDGE_WEIGHT if ind["peak_cells_to_edge"] == 1 else PEAK_WEIGHT
-        values["peak_pressure"] = weight * ind["peak_sharpness"]
+        if unresolved_peak(ind):
+            reasons["peak_pressure"] = unresolved_reason(ind)
+        else:
+            weight = PEAK_EDGE_WEIGHT.get(ind["peak_cells_to_edge"], PEAK_WEIGHT)
+            values["peak_pressure"] = weight * ind["peak_sharpness"]
     else:
         reasons["contact_fraction"] = reasons["peak_pressure"] = "no contact"
     if ind["dissipation_moment"] is None:

@@ -6,6 +6,9 @@ points into one sentence (:func:`gather`). Kinds:
 
 - ``"friction"``, ``"contact_fraction"``, ``"peak_pressure"``: the estimated discretisation error
   of that quantity exceeds :data:`WARN` (5 %);
+- ``"peak_unresolved"``: the peak pressure lies in leading-edge layers thinner than a cell, so its
+  change on a finer grid does not bound its error (the default estimate is then ``None``;
+  docs/theory.md §13.4);
 - ``"friction_forms"``: the two friction forms differ by more than :data:`WARN` (eq. 6 is
   then not to be used; docs/theory.md §4.4);
 - ``"domain_edge"``: an isolated domain carries more than :data:`EDGE_LOAD` of the load on its
@@ -18,6 +21,8 @@ are gathered by their text.
 
 import math
 import re
+
+from .estimate import unresolved_peak
 
 __all__ = ["EDGE_LOAD", "WARN", "Finding", "findings_of", "gather"]
 
@@ -115,6 +120,21 @@ def _peak(result, est, ind, n):
     )
 
 
+def _unresolved(result, est, ind):
+    mu = est["friction"]
+    friction = "" if mu is None else f" Friction integrates over the layers (its estimated error is {_pct(mu)})."
+    layers = ind.get("subcell_layers") or []
+    thinnest = min(t[1] for t in layers) * ind["spacing"] if layers else 0.0
+    return Finding(
+        f"peak_pressure = {float(result.pressure.max()):.4g} Pa is not resolved: the pressure peaks in "
+        f"leading-edge layers V tau_k thinner than a cell (down to {thinnest:.2g} m for {len(layers)} Prony "
+        f"term(s), cells of {ind['spacing']:.2g} m), about {ind['edge_spike']:.2g} times the grid's peak, and "
+        f"grows with every refinement until the cells are as thin as the layers, so its change on a grid "
+        f"twice as fine does not bound its error.{friction} Do not quote the peak pressure from this grid.",
+        "peak_unresolved",
+    )
+
+
 def _forms(result, est, gap):
     mu = est["friction"]
     known = "" if mu is None else f", whose estimated error is {_pct(mu)}"
@@ -148,6 +168,8 @@ def findings_of(result, est, ind, n):
         out.append(_uncertain("contact_fraction", result.contact_fraction, est, detail, n))
     if est["peak_pressure"] is not None and est["peak_pressure"] > WARN:
         out.append(_peak(result, est, ind, n))
+    elif unresolved_peak(ind):  # also with a measured (refined) change, which does not bound it
+        out.append(_unresolved(result, est, ind))
     gap = ind.get("form_gap", 0.0)
     if gap > WARN and max(abs(result.friction), abs(result.friction_eq6)) >= NEGLIGIBLE_FRICTION:
         out.append(_forms(result, est, gap))

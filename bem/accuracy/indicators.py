@@ -23,6 +23,12 @@ cells and isolated domains, 1-D profiles and 2-D surfaces, whatever made the sur
   near 1 for a spike a cell wide (a contact spot of one cell, or a leading-edge layer).
 - :func:`subcell_layers`: the Prony terms whose leading-edge layer ``V tau_k`` is thinner than
   a cell, with their share of the modulus the grid's own frequency ``V / dx`` sees.
+- :func:`leading_edge_layers`: whether the pressure's leading-edge spike lies inside the edge cell.
+  Entering the contact, the material relaxes through each Prony term over ``V tau_k``; near the
+  edge the strain rises like ``sqrt(s)`` at a distance ``s`` from it, and the stress follows by
+  superposition through the relaxation modulus ``E(t)``, ``t = s / V``, so layers thinner than a cell can raise a spike there that the grid averages
+  away. Read against the edge cell's own pressure, this gives the pressure's maximum inside that
+  cell and the edge cell's pressure on a grid twice as fine.
 - :func:`points_per_wavelength`: grid points per shortest wavelength of the heights (the
   wavelength below which 5 % of their curvature spectrum lies).
 - :func:`form_gap` and :func:`edge_load`: the two friction forms' relative difference, and the
@@ -35,6 +41,7 @@ import math
 
 import numpy as np
 import scipy.fft as sfft
+from scipy.special import dawsn
 
 from .. import fft
 
@@ -44,6 +51,7 @@ __all__ = [
     "edge_load",
     "form_gap",
     "interior_roughness",
+    "leading_edge_layers",
     "loading_band",
     "peak_sharpness",
     "points_per_wavelength",
@@ -212,6 +220,79 @@ def subcell_layers(material, speed, spacing, *, share=0.01):
         if thickness < 1.0 and e_k >= share * modulus:
             out.append((float(tau), float(thickness), float(e_k / modulus)))
     return sorted(out, key=lambda t: t[1])
+
+
+def _edge_profile(material, speed, s):
+    """``g(s)`` (Pa m**0.5): the stress at a distance ``s`` (m, an array) from the leading edge of a
+    material strained like ``sqrt(s)`` since it entered the contact, by Boltzmann superposition along
+    its path, ``g(s) = int_0^s E((s - r) / V) d sqrt(r)``; a term's share is
+    ``E_k sqrt(l_k) D(sqrt(s / l_k))`` with ``l_k = V tau_k`` and ``D`` Dawson's integral."""
+    s = np.asarray(s, dtype=float)
+    ell = speed * material.relaxation_times
+    terms = np.sqrt(ell) * dawsn(np.sqrt(s[..., None] / ell))
+    return material.E0 * np.sqrt(s) + terms @ material.moduli
+
+
+def _edge_means(material, speed, s, g):
+    """``A(s) = (1/s) int_0^s g`` at the samples ``s`` (ascending, log-spaced) of ``g``; below the first
+    sample the material is glassy, ``g = E_inf sqrt(s)``."""
+    head = 2.0 / 3.0 * material.E_inf * s[0] ** 1.5
+    return (head + np.concatenate([[0.0], np.cumsum(0.5 * (g[1:] + g[:-1]) * np.diff(s))])) / s
+
+
+def _leading_edge_cells(contact, periodic, direction):
+    """Contact cells whose neighbour ahead (along the sliding direction's dominant axis, on the side
+    the indenter moves to) is out of contact: where the material enters the contact."""
+    c, s = math.cos(direction), math.sin(direction)
+    axis, sign = (0, c) if abs(c) >= abs(s) else (1, s)
+    if contact.ndim == 1:
+        axis = 0
+    step = -1 if sign >= 0 else 1
+    if periodic:
+        ahead = np.roll(contact, step, axis=axis)
+    else:
+        pad = [(0, 0)] * contact.ndim
+        pad[axis] = (1, 1)
+        padded = np.pad(contact, pad)
+        ahead = np.roll(padded, step, axis=axis)[
+            tuple(slice(1, -1) if a == axis else slice(None) for a in range(contact.ndim))
+        ]
+    return contact & ~ahead
+
+
+def leading_edge_layers(pressure, material, speed, spacing, *, periodic, direction=0.0, samples=800):
+    """``(spike, growth)``: the leading-edge pressure inside the edge cell, from the layers ``V tau_k``.
+
+    With ``g(s)`` the pressure's rise at a distance ``s`` from the leading edge (:func:`_edge_profile`:
+    the stress of a material strained like ``sqrt(s)``, an elastic contact's edge, since it entered
+    the contact ``s / V`` ago, through its relaxation modulus ``E(t)``) and
+    ``A(h)`` its mean over ``0 <= s <= h``, the largest leading-edge cell pressure ``p_e`` gives
+
+    - ``spike = p_e max(g) / A(dx) / p_max``, the largest pressure inside the edge cell relative to
+      the grid's peak, where ``g`` has its maximum inside the cell (layers thinner than the cell
+      make it fall again before the cell ends), else 0: above 1 the contact's true peak lies in
+      layers the grid cannot hold;
+    - ``growth = A(dx / 2) / A(dx)``, how the edge cell's pressure changes on a grid twice as fine:
+      ``2**-0.5`` for an elastic edge, above 1 where the layers stiffen the edge faster than the
+      square root falls.
+
+    ``(0, 0)`` for an elastic material, at rest or without contact. Dimensionless.
+    """
+    p = np.asarray(pressure, dtype=float)
+    if material.is_elastic or speed == 0.0 or not np.any(p > 0):
+        return 0.0, 0.0
+    lead = _leading_edge_cells(p > 0, periodic, direction)
+    if not np.any(lead):
+        return 0.0, 0.0
+    ell_min = float(speed * material.relaxation_times.min())
+    s = np.geomspace(min(ell_min, spacing) * 1e-3, spacing, samples)
+    g = _edge_profile(material, speed, s)
+    means = _edge_means(material, speed, s, g)
+    growth = float(np.interp(math.log(spacing / 2), np.log(s), means) / means[-1])
+    top = int(np.argmax(g))
+    if top == samples - 1:  # g still rises at the cell's end: no spike inside the cell
+        return 0.0, growth
+    return float(p[lead].max() * g[top] / means[-1] / p.max()), growth
 
 
 def points_per_wavelength(heights):

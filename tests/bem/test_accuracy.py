@@ -94,6 +94,28 @@ def test_peak_sharpness_and_its_distance_to_the_edge():
     assert sharp == pytest.approx((3.0 - 0.5 * p[10]) / 3.0) and edge == 1
 
 
+def test_leading_edge_layers_spike_and_growth():
+    p = np.zeros(32)
+    p[8:24] = np.sqrt(np.sin(np.linspace(0.1, np.pi - 0.1, 16)))
+    p[23] = 0.8  # the leading edge cell (the indenter moves to +x), near the peak as at a slow speed
+    # no layers: nothing spikes, and the edge cell's pressure falls by 2**-0.5 on a finer grid
+    assert ind.leading_edge_layers(p, bem.Material.elastic(1e7), 1e-3, 1e-4, periodic=False) == (0.0, 0.0)
+    glassy = bem.Material.standard_linear_solid(E0=1e6, E_inf=1e7, relaxation_time=10.0)
+    spike, growth = ind.leading_edge_layers(p, glassy, 1e-3, 1e-4, periodic=False)  # V tau = 1 cm >> dx
+    assert spike == 0.0 and growth == pytest.approx(2**-0.5, rel=5e-3)
+    # a broad rubber slowly: layers far below the cell stiffen the edge, which grows on refinement
+    broad = rubber(500, 14, 1e-8, 10.0)
+    spike, growth = ind.leading_edge_layers(p, broad, 1e-7, 1e-5, periodic=False)
+    assert spike > 1.0 and growth > 1.0
+    assert ind.leading_edge_layers(p, broad, 1e-6, 1e-5, periodic=False)[1] < 1.0  # layers near the cell
+    # the leading edge is the side the indenter moves to (+x): a lone spike on the trailing side is
+    # not read as an edge layer
+    trailing = p.copy()
+    trailing[8] = 2.0
+    lead_only, _ = ind.leading_edge_layers(trailing, broad, 1e-7, 1e-5, periodic=False)
+    assert lead_only == pytest.approx(spike * p.max() / 2.0) and lead_only < 1.0
+
+
 def test_subcell_layers_pick_the_terms_thinner_than_a_cell():
     m = rubber(1000, 12, 1e-7, 1.0)
     layers = ind.subcell_layers(m, speed=1e-5, spacing=1e-6)
@@ -141,8 +163,10 @@ def _within(est, ref, factor=3.0, floor=1e-3):
 def test_estimate_against_the_twice_finer_solve_periodic_rough():
     """A 2-D rough cell (96², 12 scales: 8 points per wavelength, H = 0.7) on a 4-term rubber at
     10 % contact (a surface, seed and material none of the fitted cases had). Measured: friction
-    1.1e-2 against an estimate of 1.1e-2, contact 4.8e-2 / 5.0e-2; the peak pressure moved 0.93 %
-    where the estimate says 6.9 %: peak estimates err on the high side (docs/theory.md §13)."""
+    1.1e-2 against an estimate of 1.1e-2, contact 4.8e-2 / 5.0e-2. The peak pressure sits two cells
+    from a spot's leading edge, where layers V tau_k of 3e-8..3e-5 m (cells of 1e-4 m) put the edge
+    cell's model spike at 1.09 times the peak: it is reported unresolved, though it moved only 0.9 %
+    (and 0.2 % on the next doubling), an early alarm of the rule (docs/theory.md §13.4)."""
     m = rubber(30, 4, 1e-4, 1e-1)
     s = bem.surfaces.self_affine(96, 0.01, hurst=0.7, scales=12, rms_slope=0.2, seed=21)
     r = bem.solve(s, m, speed=3e-4, load=2.0)
@@ -153,7 +177,7 @@ def test_estimate_against_the_twice_finer_solve_periodic_rough():
         "friction": True,
         "contact_fraction": True,
     }
-    assert est["peak_pressure"] >= ref["peak_pressure"] / 3
+    assert est["peak_pressure"] is None and est.reasons["peak_pressure"].startswith("unresolved")
 
 
 def test_estimate_against_the_twice_finer_solve_cylinder_on_a_rubber():
@@ -242,16 +266,69 @@ def test_unresolved_leading_edge_layers_flag_the_peak_not_the_friction():
     """12-term rubber (E_inf/E0 = 1000, tau 1e-7..1 s), cylinder a decade below its friction peak:
     the peak pressure sits within two cells of the leading edge, in layers V tau_k of 1e-12..1e-5 m
     against cells of 1e-5 m, and moves erratically with the grid (measured per doubling from 1024
-    cells: 44 %, 0.6 %, 3.7 %, 12 %) while friction moves 1.8e-4 and less. Estimated at 2048 cells:
-    peak 8 %, friction 4.7e-5. Before: no estimate, no warning."""
+    cells: 44 %, 0.6 %, 3.7 %, 12 %) while friction moves 1.8e-4 and less. Estimated at 4096 cells
+    (the peak on the edge cell; the model edge spike, 1.09 times the peak, falls on the finer grid, so
+    the peak counts as resolved but uncertain): peak 6.9 %, friction 3.4e-5."""
     m = rubber(1000, 12, 1e-7, 1.0)
     a0 = math.sqrt(4 * 1500.0 * 0.02 / (math.pi * m.E0 / 0.75))
-    c = bem.surfaces.cylinder(radius=0.02, n=2048, length=4 * a0)
+    c = bem.surfaces.cylinder(radius=0.02, n=4096, length=4 * a0)
     r = bem.solve(c, m, speed=1e-5, load=1500.0, periodic=False)
     assert r.error_estimate["peak_pressure"] > 0.05
     assert r.error_estimate["friction"] < 1e-3
     (peak,) = [w for w in r.warnings if w.kind == "peak_pressure"]
     assert "leading-edge layers thinner than a cell" in peak and "Friction does not depend on them" in peak
+
+
+BROAD = rubber(500, 14, 1e-8, 10.0)  # the issue's broad rubber: 14 terms, E_inf/E0 = 500
+
+
+def _indenter(kind, n, speed, a=1e-3, radius=0.01):
+    """A cylinder or sphere of contact half-width ``a`` (m) on :data:`BROAD`, on a domain 4 a wide."""
+    e_star = abs(complex(BROAD.complex_modulus(speed / a))) / (1 - BROAD.nu**2)
+    if kind == "cylinder":
+        s, load = bem.surfaces.cylinder(radius=radius, n=n, length=4 * a), math.pi * a**2 * e_star / (4 * radius)
+    else:
+        s, load = bem.surfaces.sphere(radius=radius, n=n, length=4 * a), 4 * e_star * a**3 / (3 * radius)
+    return s, dict(speed=speed, load=load, periodic=False)
+
+
+@pytest.mark.parametrize("kind, n, speed", [("cylinder", 512, 1e-7), ("sphere", 48, 2e-7)])
+def test_slow_indenter_on_a_broad_rubber_has_an_unresolved_peak(kind, n, speed):
+    """The trap of issue 37: every layer V tau_k is thinner than a cell (1e-15..1e-6 m against cells of
+    7.8e-6 m for the cylinder), the grid puts the peak at the centre, and the finer grid finds a
+    leading-edge spike: the peak moved 9.8 % (cylinder) and 12 % (sphere) where the estimate said
+    4.6e-6 and 1.1e-3. Now the peak has no estimate, says why, and warns; friction, which integrates
+    over the layers, keeps its estimate (measured 1.3e-3 and 5.4e-3)."""
+    s, kw = _indenter(kind, n, speed)
+    r = bem.solve(s, BROAD, **kw)
+    est = r.error_estimate
+    assert est["peak_pressure"] is None and est.reasons["peak_pressure"].startswith("unresolved")
+    (found,) = [w for w in r.warnings if w.kind == "peak_unresolved"]
+    assert "thinner than a cell" in found and "14 Prony term(s)" in found
+    assert not [w for w in r.warnings if w.kind == "friction"]
+    ref = bem.solve(s, BROAD, error_estimate="refined", **kw).error_estimate
+    assert ref["peak_pressure"] > 0.05
+    assert ref["friction"] / 3 <= est["friction"] <= 3 * ref["friction"]
+
+
+def test_a_measured_change_does_not_clear_an_unresolved_peak():
+    """The same cylinder on 256 cells: the grid twice as fine moves its peak by 9e-6, and the next one
+    by 9.8 % (above). The refined estimate reports the 9e-6 it measured, and the warning that it does
+    not bound the error."""
+    s, kw = _indenter("cylinder", 256, 1e-7)
+    r = bem.solve(s, BROAD, error_estimate="refined", **kw)
+    assert r.error_estimate["peak_pressure"] < 1e-4
+    (found,) = [w for w in r.warnings if w.kind == "peak_unresolved"]
+    assert "does not bound its error" in found
+
+
+def test_slower_still_the_layers_raise_no_spike_and_the_peak_keeps_its_estimate():
+    """Ten times slower (layers 1e-16..1e-7 m): the layers still lie below the cell, but the edge stays
+    below the centre's pressure, the peak is resolved and moves 2e-6 on the finer grid."""
+    s, kw = _indenter("cylinder", 512, 1e-8)
+    r = bem.solve(s, BROAD, **kw)
+    assert r.error_estimate["peak_pressure"] is not None and r.error_estimate["peak_pressure"] < 1e-3
+    assert r.warnings == ()
 
 
 def test_refined_estimate_falls_back_when_the_finer_grid_is_refused():

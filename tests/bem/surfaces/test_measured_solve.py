@@ -30,6 +30,25 @@ def test_solve_takes_the_load_on_the_patch(scan):
     assert res.pressure.mean() == pytest.approx(0.02 / (0.625e-3) ** 2, rel=1e-9)
 
 
+def test_solve_takes_a_nominal_pressure_instead_of_the_patch_load(scan):
+    """20 kPa on the scanned patch is 20 kPa on its mirrored cell: the same solve as the patch load
+    that pressure puts on the patch's area (0.625 mm square)."""
+    by_pressure = bem.solve(scan, SLS, speed=1e-3, nominal_pressure=2e4)
+    by_load = bem.solve(scan, SLS, speed=1e-3, load=2e4 * (0.625e-3) ** 2)
+    assert by_pressure.friction == pytest.approx(by_load.friction, rel=1e-12)
+    assert by_pressure.load == pytest.approx(by_load.load, rel=1e-12)
+    assert by_pressure.pressure.mean() == pytest.approx(2e4, rel=1e-9)
+    # the same keyword on any surface: the pressure times the cell's area (its length for a profile)
+    profile = bem.surfaces.sinusoid(64, 1e-3, amplitude=1e-6)
+    r = bem.solve(profile, SLS, speed=1e-3, nominal_pressure=1e5)
+    assert r.load == pytest.approx(1e5 * 1e-3, rel=1e-12)
+    for given in (dict(load=0.02, nominal_pressure=2e4), dict(nominal_pressure=2e4, approach=1e-7), {}):
+        with pytest.raises(bem.InputError, match="give exactly one of load .*, nominal_pressure .* or approach"):
+            bem.solve(scan, SLS, speed=1e-3, **given)
+    with pytest.raises(bem.InputError, match="nominal_pressure"):
+        bem.solve(scan, SLS, speed=1e-3, nominal_pressure=-1.0)
+
+
 def test_solve_and_curve_warn_above_the_patch_speed_limit(scan):
     limit = measured.speed_limit(scan, SLS)
     slow = bem.solve(scan, SLS, speed=limit / 10, load=0.02)
