@@ -39,10 +39,6 @@ SEARCH_DECREASE = 1e-4
 """Sufficient decrease of the merit for the full step (Armijo): any real decrease is enough."""
 SEARCH_HALVINGS = 12
 """Step lengths 1/2 ... 1/2**12 tried by the line search: they cost no product; 1/4096 is short enough."""
-ASCENTS = 3
-"""Rising residuals in a row after which a symmetric problem starts damping: plain steps are cycling."""
-STALL_RATIO = 0.5
-"""A settled set whose residual fell by less than this factor tightens the inner solves: they limit it."""
 CYCLING_STEPS = 5
 """Steps without a new low in set changes after which an attempt that only places the set (the
 symmetric-part start) ends: its set cycles."""
@@ -87,20 +83,17 @@ class ContactSolution:
 @dataclass(frozen=True)
 class Attempt:
     """How one attempt iterates. ``precondition``: None (by grid size and phase), True,
-    False or ``"lines"``; ``relax``: loosen the forcing term after full steps (the fast
-    attempt); ``own_forcing``: keep ``eta`` whatever the steps do (the line-preconditioned
-    attempt); ``stop_when_cycling``: only place the set, and stop once its changes stall;
-    ``residual_stall``: stop once the residual has had no new low for this many steps;
-    ``guard``: take a full step only if it lowers the max-norm residual as well as the merit."""
+    False or ``"lines"``; ``own_forcing``: keep ``eta`` whatever the steps do (the
+    line-preconditioned attempt); ``stop_when_cycling``: only place the set, and stop once its
+    changes stall; ``residual_stall``: stop once the residual has had no new low for this many
+    steps."""
 
     maxiter: int
     eta: float
-    relax: bool = True
     precondition: object = None
     own_forcing: bool = False
     stop_when_cycling: bool = False
     residual_stall: int | None = None
-    guard: bool = False
 
 
 @dataclass(frozen=True)
@@ -125,45 +118,34 @@ class Iterate:
 
 @dataclass(frozen=True)
 class SetTrack:
-    """What the set-change detector remembers: the last step's flipped points and their count,
-    the fewest changes so far and the steps since."""
+    """The fewest set changes so far and the steps since (an attempt that only places the set
+    stops once they stall)."""
 
-    flips: np.ndarray | None = None
-    changes: int = 0
     fewest: int | None = None
     stalled: int = 0
 
     def after(self, old, new):
-        """``(track, changes, converging)`` after a step from set ``old`` to set ``new``."""
-        flips = new != old
-        changed = int(np.count_nonzero(flips))
-        undone = 0 if self.flips is None else int(np.count_nonzero(flips & self.flips))
-        converging = fc.set_converging(
-            changed, self.changes, undone, decrease=fc.OSCILLATION_DECREASE, settling=fc.SETTLING_CHANGES
-        )
+        """``(track, changes)`` after a step from set ``old`` to set ``new``."""
+        changed = int(np.count_nonzero(new != old))
         if self.fewest is None or changed < self.fewest:
-            fewest, stalled = changed, 0
-        else:
-            fewest, stalled = self.fewest, self.stalled + (changed > 0)
-        return SetTrack(flips, changed, fewest, stalled), changed, converging
+            return SetTrack(changed, 0), changed
+        return SetTrack(self.fewest, self.stalled + (changed > 0)), changed
 
 
 @dataclass(frozen=True)
 class ResidualTrack:
-    """The lowest residual and the steps since; rising residuals in a row; steps at the floor."""
+    """The lowest residual and the steps since; steps at the floor."""
 
     lowest: float
     since_lowest: int = 0
-    ascents: int = 0
     at_floor: int = 0
 
-    def after(self, previous, residual, *, unchanged, floor):
+    def after(self, residual, *, unchanged, floor):
         lower = residual < self.lowest
         stuck = unchanged and not lower and residual <= FLOOR_MARGIN * floor
         return ResidualTrack(
             lowest=min(self.lowest, residual),
             since_lowest=0 if lower else self.since_lowest + 1,
-            ascents=self.ascents + 1 if residual > previous else 0,
             at_floor=self.at_floor + 1 if stuck else 0,
         )
 
@@ -252,14 +234,12 @@ class _Run:
         g = u - pb.ht - d
         return Iterate(p, u, g, d, contact, complementarity_residual(p, g, pb.p_ref, pb.h_ref)), tighten
 
-    def step_length(self, it, new, changed, damped):
-        """Non-symmetric problems are damped by the line search (guarded: the full step only if it
-        also lowers the max-norm residual); an unchanged set, the same system solved more
-        accurately, always takes the full step."""
-        if not (changed and damped):
+    def step_length(self, it, new, changed):
+        """Non-symmetric problems are damped by the line search; symmetric ones take the Newton
+        point, and so does an unchanged set (the same system solved more accurately)."""
+        if not changed or self.op.is_symmetric:
             return 1.0
-        full = new.residual <= it.residual or not self.attempt.guard
-        return line_search(it.p, it.g, new.p, new.g, self.pb.c, full=full)
+        return line_search(it.p, it.g, new.p, new.g, self.pb.c, full=True)
 
     def go_on(self, it, outer, sets, residuals):
         a = self.attempt
@@ -274,45 +254,32 @@ def _iterate(run, it):
     """The active-set loop from the first Newton point ``it``; returns the last iterate, its
     step count and the residual track."""
     a = run.attempt
-    eta = fc.Forcing.at(a.eta)
+    eta = a.eta
     sets, residuals = SetTrack(), ResidualTrack(it.residual)
-    damped, tighten, outer = not run.op.is_symmetric, 1.0, 1
+    tighten, outer = 1.0, 1
     while run.go_on(it, outer, sets, residuals):
         outer += 1
         contact = np.greater(it.p, run.pb.c * it.g)  # p - c g > 0
         if not contact.any():
             contact = it.g == it.g.min()
-        sets, changed, converging = sets.after(it.contact, contact)
+        sets, changed = sets.after(it.contact, contact)
         # inexact Newton: loose inner solves while the set changes, tight once it has settled
-        new, tighten = run.point(contact, it, eta.eta if changed else 0.0, tighten)
-        t = run.step_length(it, new, changed, damped)
-        eta = fc.next_forcing(
-            eta,
-            damped=t < 1.0,
-            settled=fc.settled(
-                changed, np.count_nonzero(contact), changes=fc.SETTLING_CHANGES, share=fc.SETTLING_SHARE
-            ),
-            converging=converging,
-            relax=a.relax,
-            oscillation=not (a.own_forcing or a.stop_when_cycling),
-            damping=not a.own_forcing,
-        )
-        previous, it = it.residual, it.toward(new, t, run.pb)
-        residuals = residuals.after(previous, it.residual, unchanged=not changed, floor=roundoff_floor(run.pb, it))
-        damped = damped or residuals.ascents >= ASCENTS
-        if not changed and it.residual > STALL_RATIO * previous:
-            tighten *= fc.TIGHTEN  # settled but stalled: the inner accuracy limits the residual
-        _log_step(outer, changed, converging, t, it, run.inner.matvecs)
+        new, tighten = run.point(contact, it, eta if changed else 0.0, tighten)
+        t = run.step_length(it, new, changed)
+        if not a.own_forcing:
+            eta = fc.next_eta(eta, damped=t < 1.0, settled=fc.settled(changed, np.count_nonzero(contact)))
+        it = it.toward(new, t, run.pb)
+        residuals = residuals.after(it.residual, unchanged=not changed, floor=roundoff_floor(run.pb, it))
+        _log_step(outer, changed, t, it, run.inner.matvecs)
     return it, outer, residuals
 
 
-def _log_step(outer, changed, converging, t, it, matvecs):
+def _log_step(outer, changed, t, it, matvecs):
     if log.isEnabledFor(logging.DEBUG):
         log.debug(
-            "active set %d: %d changes%s, step %.3g, residual %.3e, contact %.4f, %d products",
+            "active set %d: %d changes, step %.3g, residual %.3e, contact %.4f, %d products",
             outer,
             changed,
-            "" if converging else " (not converging)",
             t,
             it.residual,
             np.mean(it.p > 0),
