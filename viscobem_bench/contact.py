@@ -79,6 +79,16 @@ MECHANISMS = [
     ),
     ("strong coarse start", "strong operators coarsen from 128 points", {}, {"start:COARSEN_MIN_SIZE_STRONG": 10**12}),
     ("strong gap scale", "GAP_SCALE_STRONG (off: GAP_SCALE for all)", {}, {"newton:GAP_SCALE_STRONG": 10.0}),
+    ("eta floor", "eta never tightens below ETA_MIN", {}, {"forcing:ETA_MIN": 0.0}),
+    (
+        "large-grid exact preconditioner",
+        "periodic cells from 2**17 points",
+        {},
+        {"newton:PRECONDITION_MIN_SIZE": 10**12},
+    ),
+    ("lines maxiter share", "the line attempt may take half of maxiter", {}, {"solver:LINES_MAXITER_SHARE": 1.0}),
+    ("long GMRES restarts", "restart length up to RESTART_MAX by memory (off: 30)", {}, {"krylov:RESTART_MAX": 30}),
+    ("gap floor", "the gap scale is held above GAP_FLOOR_SHARE of the heights", {}, {"newton:GAP_FLOOR_SHARE": 0.0}),
     ("round-off floor stop", "stop at the residual's round-off floor", {}, {"newton:FLOOR_STALLS": 10**9}),
 ]
 
@@ -89,7 +99,8 @@ def switched_off(patches):
     of the block, in every module of the package that holds the same object under that name (a
     constant imported by a sibling is patched there too), and restore them after."""
     saved = []
-    modules = [importlib.import_module(f"bem.contact.{m}") for m in ("forcing", "inner", "newton", "solver", "start")]
+    names = ("forcing", "inner", "krylov", "line_preconditioner", "newton", "operator", "solver", "start")
+    modules = [importlib.import_module(f"bem.contact.{m}") for m in names]
     try:
         for key, value in patches.items():
             if key == "warm":

@@ -9,26 +9,21 @@ inner solves are tight (a decade below the outer test). A damped step on a nearl
 loose to be trusted as a step.
 """
 
-__all__ = ["ETA_MIN", "SETTLING_CHANGES", "SETTLING_SHARE", "TIGHTEN", "next_eta", "settled"]
+__all__ = ["ETA_MIN", "SETTLING_CHANGES", "TIGHTEN", "next_eta", "settled"]
 
 SETTLING_CHANGES = 100
 """Set changes a settling set may make: a few points at the margin of the contact flip while the
 Newton points tighten (ablation, ``docs/theory.md`` §4.2, row "damped-settled tighten")."""
-SETTLING_SHARE = 0.01
-"""... or this share of the contact set, on large contacts."""
 TIGHTEN = 0.1
 """Factor on ``eta`` when it tightens: a decade a step, the Krylov solves' natural unit."""
 ETA_MIN = 1e-4
 """Tightest ``eta`` the rule imposes: below it an inexact Newton point is as good as an exact one."""
 
 
-def settled(changed, contact_size, *, changes=None, share=None):
-    """Whether a step's ``changed`` points on a set of ``contact_size`` points leave it nearly
-    settled: at most ``changes``, or at most the share ``share`` of the set (by default
-    :data:`SETTLING_CHANGES` and :data:`SETTLING_SHARE`)."""
-    changes = SETTLING_CHANGES if changes is None else changes
-    share = SETTLING_SHARE if share is None else share
-    return changed <= max(changes, share * contact_size)
+def settled(changed, *, changes=None):
+    """Whether a step that changed ``changed`` points leaves the set nearly settled: at most
+    ``changes`` (by default :data:`SETTLING_CHANGES`)."""
+    return changed <= (SETTLING_CHANGES if changes is None else changes)
 
 
 def next_eta(eta, *, damped, settled):

@@ -34,9 +34,8 @@ GAP_SCALE_STRONG = 0.3
 """The same for strongly non-symmetric operators, whose pressure error per gap error is larger."""
 GAP_FLOOR_SHARE = 1e-4
 """Smallest gap scale as a share of the height range: below it round-off of the gap would stop
-tight solves."""
-SEARCH_DECREASE = 1e-4
-"""Sufficient decrease of the merit for the full step (Armijo): any real decrease is enough."""
+tight solves (ablation row "gap floor": no product on the set, but the 4096-point profile of
+``tests/bem/contact/test_roundoff.py`` reaches rtol 1e-11 only with it)."""
 SEARCH_HALVINGS = 12
 """Step lengths 1/2 ... 1/2**12 tried by the line search: they cost no product; 1/4096 is short enough."""
 CYCLING_STEPS = 5
@@ -171,7 +170,7 @@ def roundoff_floor(pb, it):
 def line_search(p, g, p_new, g_new, c, *, full):
     """Step ``t`` in (0, 1] that (nearly) minimises the merit ``||min(p, c g)||**2`` along the
     segment from ``(p, g)`` to ``(p_new, g_new)``: the full step if allowed (``full``) and it
-    lowers the merit by the share :data:`SEARCH_DECREASE`, else the best of ``1/2 ... 1/2**k``."""
+    lowers the merit at all, else the best of ``1/2 ... 1/2**k``."""
     # only points with pressure or negative gap at either end can contribute
     live = ((p != 0) | (p_new != 0) | (g < 0) | (g_new < 0)).reshape(-1)
     p0, g0 = p.reshape(-1)[live], g.reshape(-1)[live]
@@ -182,7 +181,7 @@ def line_search(p, g, p_new, g_new, c, *, full):
         return float(np.dot(f, f))
 
     m0 = merit(0.0)
-    if full and merit(1.0) <= (1 - SEARCH_DECREASE) * m0:
+    if full and merit(1.0) < m0:
         return 1.0
     ts = 0.5 ** np.arange(1, SEARCH_HALVINGS + 1)
     values = [merit(t) for t in ts]
@@ -267,7 +266,7 @@ def _iterate(run, it):
         new, tighten = run.point(contact, it, eta if changed else 0.0, tighten)
         t = run.step_length(it, new, changed)
         if not a.own_forcing:
-            eta = fc.next_eta(eta, damped=t < 1.0, settled=fc.settled(changed, np.count_nonzero(contact)))
+            eta = fc.next_eta(eta, damped=t < 1.0, settled=fc.settled(changed))
         it = it.toward(new, t, run.pb)
         residuals = residuals.after(it.residual, unchanged=not changed, floor=roundoff_floor(run.pb, it))
         _log_step(outer, changed, t, it, run.inner.matvecs)

@@ -9,11 +9,9 @@ from bem.contact import forcing as fc
 from bem.contact import newton
 
 
-def test_settled_by_count_or_share():
-    assert fc.settled(100, 10**6, changes=100, share=0.01)
-    assert not fc.settled(101, 1000, changes=100, share=0.01)
-    assert fc.settled(5000, 10**6, changes=100, share=0.01)
-    assert fc.settled(fc.SETTLING_CHANGES, 0) and not fc.settled(fc.SETTLING_CHANGES + 1, 0)
+def test_settled_by_count():
+    assert fc.settled(100, changes=100) and not fc.settled(101, changes=100)
+    assert fc.settled(fc.SETTLING_CHANGES) and not fc.settled(fc.SETTLING_CHANGES + 1)
 
 
 def test_a_damped_step_on_a_settled_set_tightens_eta_down_to_its_floor():
