@@ -17,7 +17,7 @@ Newton points tighten (ablation, ``docs/theory.md`` §4.2, row "damped-settled t
 TIGHTEN = 0.1
 """Factor on ``eta`` when it tightens: a decade a step, the Krylov solves' natural unit."""
 ETA_MIN = 1e-4
-"""Tightest ``eta`` the rule imposes: below it an inexact Newton point is as good as an exact one."""
+"""Tightest ``eta`` the rule imposes: below it an inexact Newton point is as good as an exact one. Ablation row "damped-settled tighten": off costs 1.23x the products and loses two cases. Ablation row "eta floor": off costs 1.31x the products and loses a case."""
 
 
 def settled(changed, *, changes=None):
