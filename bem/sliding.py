@@ -81,7 +81,7 @@ def check_inputs(surface, material, speed, load, approach, rtol):
 
 
 _ISOLATED_METHODS = ("auto", "uniform", "adaptive")
-# keywords of bem.halfspace.adaptive.solve_adaptive that solve() passes on with method="adaptive"
+# keywords of bem.adaptive.solve_adaptive that solve() passes on with method="adaptive"
 ADAPTIVE_OPTIONS = ("levels", "buffer", "gradient", "refine_contact", "sampling", "height", "max_elements")
 _SOLVE_KEYWORDS = (
     "speed",
@@ -152,7 +152,7 @@ def solve(
         Periodic cells: ``"auto"`` or ``"active-set"`` (the same primal–dual active-set
         solver with CG (elastic) or GMRES (viscoelastic) inner solves). Isolated contacts:
         ``"uniform"`` (DC-FFT on the uniform grid), ``"adaptive"`` (non-uniform mesh,
-        :func:`bem.halfspace.adaptive.solve_adaptive`, given ``adaptive_options``) or ``"auto"``,
+        :func:`bem.adaptive.solve_adaptive`, given ``adaptive_options``) or ``"auto"``,
         the uniform grid (as fast or faster at equal error in ``viscobem bench isolated``).
     rtol : float
         Tolerance on the complementarity residual (see :mod:`bem.contact`).
@@ -313,14 +313,14 @@ def _check_method(periodic, method, adaptive_options):
 
 
 def _solve_adaptive(surface, material, common, adaptive_options, error_estimate):
-    """``method="adaptive"``: :func:`bem.halfspace.adaptive.solve_adaptive` (load control only),
+    """``method="adaptive"``: :func:`bem.adaptive.solve_adaptive` (load control only),
     with its error estimate and warnings (:func:`_assessed`)."""
     if common["load"] is None:
         raise InputError(
             "approach (displacement control) is not available with method='adaptive'; "
             "give load (N, or N/m for profiles)"
         )
-    from .halfspace.adaptive.solver import solve_adaptive
+    from .adaptive.solver import solve_adaptive
 
     keep = ("speed", "load", "rtol", "maxiter")
     result = solve_adaptive(

@@ -1,7 +1,9 @@
 """Import rules of the library packages, read from the sources with ``ast`` (no import runs):
 
-- no import cycle between modules, nor between packages (imports inside functions count:
-  a deferred import is still a dependency);
+- no import cycle between modules, nor between packages, nor between the subpackages and
+  top-level modules of ``bem`` (``bem.contact``, ``bem.halfspace``, ``bem.result``, ...: the
+  operators sit below the solvers, which sit below the results); imports inside functions count:
+  a deferred import is still a dependency;
 - no private name (``_x``) taken from another module, neither imported nor reached as an
   attribute of an imported module: what modules share is public (within their subpackage);
 - every module parses as Python 3.10 (``requires-python``) and reads TOML through the
@@ -114,6 +116,24 @@ def _package_edges(edges):
     return top
 
 
+def _subpackage_edges(edges, top="bem"):
+    """The module graph of ``top`` folded onto its subpackages and top-level modules
+    (``bem.halfspace.periodic`` -> ``bem.halfspace``); the package's own ``__init__`` re-exports
+    everything and stays out."""
+
+    def unit(m):
+        return ".".join(m.split(".")[:2])
+
+    folded = {}
+    for m, targets in edges.items():
+        if m.split(".")[0] != top or m == top:
+            continue
+        folded.setdefault(unit(m), set()).update(
+            unit(t) for t in targets if t.split(".")[0] == top and t != top and unit(t) != unit(m)
+        )
+    return folded
+
+
 def _private_uses(sources):
     """``module:line name`` for every private name taken from another module."""
     found = []
@@ -148,6 +168,20 @@ def test_no_import_cycle_between_packages():
     assert _cycles(_package_edges(_graph(SOURCES))) == []
 
 
+def test_no_import_cycle_between_the_subpackages_of_bem():
+    """E.g. an operator package that imports a result type, which imports the accuracy estimates,
+    which build operators: each layer must be importable and testable below the next."""
+    assert _cycles(_subpackage_edges(_graph(SOURCES))) == []
+
+
+def test_every_bem_module_imports():
+    """The graph above is read from the sources; this imports each module for real."""
+    import importlib
+
+    for name in sorted(m for m in SOURCES if m.split(".")[0] == "bem"):
+        importlib.import_module(name)
+
+
 def test_no_private_name_is_taken_from_another_module():
     assert _private_uses(SOURCES) == []
 
@@ -168,6 +202,13 @@ def test_the_rules_catch_a_cycle_and_a_private_import(tmp_path):
             "bem/__init__.py": "",
             "bem/a.py": "def f():\n    from .b import g\n",
             "bem/b.py": "from . import a\n",
+            "bem/ops/__init__.py": "",
+            "bem/ops/kernel.py": "from ..result import R\n",
+            "bem/ops/periodic.py": "",
+            "bem/result.py": "from .est.estimate import E\n",
+            "bem/est/__init__.py": "",
+            "bem/est/estimate.py": "",
+            "bem/est/refined.py": "from ..ops.periodic import P\n",
             "viscobem_cli/__init__.py": "",
             "viscobem_cli/main.py": "from viscobem_bench import suite\n",
             "viscobem_bench/__init__.py": "",
@@ -183,6 +224,7 @@ def test_the_rules_catch_a_cycle_and_a_private_import(tmp_path):
     edges = _graph(fake)
     assert _cycles(edges) == [["bem.a", "bem.b"], ["viscobem_bench.suite", "viscobem_cli.main"]]
     assert _cycles(_package_edges(edges)) == [["viscobem_bench", "viscobem_cli"]]
+    assert _cycles(_subpackage_edges(edges)) == [["bem.a", "bem.b"], ["bem.est", "bem.ops", "bem.result"]]
     assert sorted(u.split()[1] for u in _private_uses(fake)) == [
         "bem.a._cache",
         "bem.b._check",

@@ -16,7 +16,7 @@ and ``a0`` the relaxed (E0) Hertz half-width / radius:
   favours coarse far elements.
 
 Solvers: ``bem.solve(..., periodic=False, method="uniform")`` over a range of grids, and
-``bem.halfspace.adaptive.solve_adaptive`` over fine grids and refinement levels (coarse mesh of 32
+``bem.adaptive.solve_adaptive`` over fine grids and refinement levels (coarse mesh of 32
 strips, or 8 x 8 squares). Error = max(|friction/ref - 1|, |peak pressure/ref - 1|), with
 ``friction`` the dissipation form of each solver. Each case runs in a fresh interpreter with
 BLAS threads pinned to 1 (:mod:`viscobem_bench.instruments`); wall time is that of the solve call
@@ -67,7 +67,7 @@ def run_case(problem, factor, method, n, levels):
     """One solve in this (fresh) process; returns its numbers."""
     import bem
     from bem import surfaces
-    from bem.halfspace.adaptive import solve_adaptive
+    from bem.adaptive import solve_adaptive
 
     m = seed_material()
     a0 = contact_half_width(problem, m)

@@ -7,7 +7,8 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
     viscobem scene [NAME]                     print a built-in scene (default: the template)
     viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem,
                                               fem_convergence, isolated, rubber_speeds, curve,
-                                              broadband, import, materials, measured, accuracy, coverage);
+                                              broadband, import, materials, measured, accuracy,
+                                              coverage, friction_map, contact);
                                               writes only under DIR
     viscobem validate [--quick] [--case NAME ...] --out DIR   BEM vs FEM vs exact solutions
 
@@ -328,6 +329,7 @@ def build_parser():
             "accuracy",
             "coverage",
             "friction_map",
+            "contact",
         ],
         help="all (default: every solver, scaling, skipping), one detailed benchmark "
         "(fem_convergence: the FEM's observed orders in mesh size, domain size and time step), "
@@ -335,8 +337,9 @@ def build_parser():
         "and master curves against pyvisco), measured (boundary treatments of measured scans: "
         "patches cut from known surfaces), accuracy (the error estimate's cost and its "
         "agreement with the twice-finer solve), coverage (the estimate against the twice-finer solve "
-        "over 240 seeded cases, tuning and held out), or friction_map (friction over speed and temperature from "
-        "one curve, against direct solves and one curve's cost)",
+        "over 240 seeded cases, tuning and held out), friction_map (friction over speed and temperature from "
+        "one curve, against direct solves and one curve's cost), or contact (the contact solver's "
+        "mechanisms switched off in turn over a fixed case set: products, time, success, error)",
     )
     bench.add_argument("--quick", action="store_true", help="small sizes (smoke test)")
     bench.add_argument("--out", default="bench-out", help="output folder")

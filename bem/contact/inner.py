@@ -30,19 +30,12 @@ from .operator import SinglePrecision
 
 __all__ = ["InnerSolver", "Problem", "projected", "restricted"]
 
-MAXITER_PER_SQRT_N = 20.0
-"""Cap on one inner solve's products per square root of the grid points: Krylov counts grow
-like sqrt(N) on these operators; a solve that needs more is limited by something else."""
-MAXITER_BASE = 200
-"""... plus this many, so that small grids still get a useful solve."""
 FINAL_ATOL_SHARE = 0.1
 """Absolute inner tolerance as a share of ``rtol`` times the gap scale: a decade below the outer
 test, so that the settled set's Newton point meets it."""
-ATOL_FLOOR = 1e-3
-"""Lowest share of that tolerance a stalled settled set may tighten to: beyond it only round-off."""
 SINGLE_PRECISION_RTOL = 1e-3
 """Relative inner tolerance from which float32 products are used: float32 round-off (~1e-7 times
-the conditioning) stays far below it."""
+the conditioning) stays far below it. Part of the stopping test, not a mechanism: the ablation's pressure errors (at most 2.9 rtol with everything on) rest on it. Ablation row "float32 inner solves": the same products (1.01x off), CPU time 0.61 s off against 0.35 s on a 512² elastic solve."""
 
 
 @dataclass(frozen=True)
@@ -98,7 +91,7 @@ class InnerSolver:
         single = options.single_precision and isinstance(op, SinglePrecision)
         self.single = op.single_precision() if single else op
         self.precondition = precondition
-        self.maxiter = int(MAXITER_PER_SQRT_N * np.sqrt(op.size) + MAXITER_BASE)
+        self.maxiter = op.size  # Krylov methods end in at most n steps in exact arithmetic
         self.matvecs = 0
         self.line_cache = {}
 
@@ -131,9 +124,9 @@ class InnerSolver:
     def _atol(final_atol, norm_b, n, eta, tighten):
         """``(absolute inner tolerance, tighten)``; a repeated set (``eta == 0``) whose right-hand
         side is already under the floor would change nothing, so the floor tightens first."""
-        while eta == 0.0 and 0 < norm_b <= final_atol * np.sqrt(n) * tighten and np.sqrt(n) * tighten > ATOL_FLOOR:
+        while eta == 0.0 and 0 < norm_b <= final_atol * np.sqrt(n) * tighten:
             tighten *= TIGHTEN
-        return max(final_atol * max(np.sqrt(n) * tighten, ATOL_FLOOR), eta * norm_b), tighten
+        return max(final_atol * np.sqrt(n) * tighten, eta * norm_b), tighten
 
     def _on_set(self, pb, contact, p):
         """``p`` restricted to the set (the load rescaled onto it) and its displacement."""

@@ -35,7 +35,7 @@ __all__ = [
 
 STRONG_PHASE = math.pi / 4
 """Symbol phase (rad) above which an operator is strongly non-symmetric: there its skew part
-outweighs its symmetric part, and plain active-set steps from the full-contact start cycle."""
+outweighs its symmetric part, and plain active-set steps from the full-contact start cycle. It selects the rows "symmetric-part start", "line preconditioner", "strong coarse start" and "strong gap scale" of the ablation."""
 
 
 @runtime_checkable

@@ -39,14 +39,12 @@ class ContactOptions:
     may take more steps; tighter the reverse. The default halves the products of exact steps."""
     precondition: bool | None = None
     """Preconditioner from the operator's full-contact inverse restricted to the set: ``None``
-    chooses (isolated domains always; periodic cells from 2**17 points); ``False`` also disables
-    the line preconditioner. An extra FFT pair per inner iteration against fewer iterations."""
-    lines: bool = True
-    """Try the line preconditioner first for strongly non-symmetric 2-D periodic operators: far
-    fewer products for the memory of its dense line inverses (see ``line_budget``)."""
+    chooses (isolated domains always; periodic cells from 2**17 points; strongly non-symmetric 2-D
+    periodic cells the line preconditioner first); ``True`` or ``False`` forces it on or off (no
+    line preconditioner). An extra FFT pair per inner iteration against fewer iterations."""
     line_budget: int = 2**30
     """Bytes the line preconditioner's inverses may take (1 GiB); above it the attempt runs
-    unpreconditioned: memory against products."""
+    unpreconditioned, and 0 never tries it: memory against products."""
     restart_budget: int = 2**26
     """Doubles the GMRES basis may take (512 MiB): longer restarts converge in fewer products on
     strongly non-symmetric systems, for memory and orthogonalisation time."""
@@ -54,11 +52,9 @@ class ContactOptions:
     """Loose inner solves' products in float32: half the memory traffic; the Newton points are
     recomputed in float64, so the answer keeps full accuracy."""
     coarsen: bool = True
-    """Start from the same problem on the grid with half the points per axis (nested iteration):
-    a few cheap coarse products against many fine Newton steps."""
-    coarsen_warm: bool = True
-    """A warm start (``initial``) goes through the coarse grid too; ``False`` uses it as it is on
-    the fine grid: cheaper when the warm start is already close."""
+    """Start from the same problem on the grid with half the points per axis (nested iteration),
+    itself started from the warm start if one is given: a few cheap coarse products against many
+    fine Newton steps."""
     symmetric_start: bool = True
     """Start strongly non-symmetric (and non-symmetric 1-D) problems from their symmetric part's
     contact: a robust CG solve places the set, where plain steps from full contact cycle."""

@@ -15,14 +15,13 @@ which costs no product (:mod:`bem.contact.newton`).
 
 - Inexact Newton [3]: inner solves stop at a share ``eta`` of their right-hand side while
   the set changes, tightly once it has settled; ``eta`` tightens when a step on a nearly
-  settled set is damped, when the residual stalls, and for good once the set stops
-  converging; it starts smaller on symmetric problems started from a coarser grid.
+  settled set is damped; it starts smaller on symmetric problems started from a coarser grid.
 - Preconditioners: ``R A^-1 R^T`` (full-contact inverse restricted to ``C``) on large grids;
   for strongly non-symmetric 2-D operators :mod:`bem.contact.line_preconditioner`.
 - Nested iteration [4]: large grids start from the grid with half the points per axis,
   which takes any warm start (kept where nearer the answer, :mod:`bem.contact.start`).
-- Retry (:func:`solve_contact`): a fast attempt, then one whose inner tolerances only
-  tighten; strongly non-symmetric 2-D operators first try the line preconditioner.
+- Retry (:func:`solve_contact`): strongly non-symmetric 2-D operators first try the line
+  preconditioner, then an unpreconditioned attempt; others make one attempt.
 What a user may set is a field of :class:`ContactOptions`; every other constant is named in
 the module that uses it, with its reason (``docs/theory.md`` §4.2 lists them all).
 
@@ -42,7 +41,6 @@ Under load control the load balance holds to round-off. A solve that fails raise
 """
 
 import logging
-import math
 from dataclasses import replace
 
 import numpy as np
@@ -59,18 +57,12 @@ __all__ = ["ContactOptions", "ContactSolution", "complementarity_residual", "sol
 log = logging.getLogger(__name__)
 DEFAULT_OPTIONS = ContactOptions()
 
-FAST_SHARE = 0.5
-"""Share of ``maxiter`` for the fast attempt (inner tolerances relax again after full steps)
-before the careful one, whose inner tolerances only tighten."""
-LINES_ETA = 0.01
-"""Forcing term of the line-preconditioned attempt: looser Newton points send fine grids into
-long damped runs."""
 LINES_MAXITER_SHARE = 0.5
 """Share of ``maxiter`` the line-preconditioned attempt may take, leaving the rest to the
 unpreconditioned one."""
 LINES_RESIDUAL_STALL = 30
 """Steps without a new low in the residual that end the line-preconditioned attempt (it cycles
-on some near-full contacts)."""
+on some near-full contacts). Ablation row "lines maxiter share": no effect on the set; it keeps steps for the second attempt (``tests/bem/test_robustness.py``). Ablation row "lines stall stop": no effect on the quick set; off costs 1.29x the products on the path-sensitive 32² case (§4.2)."""
 
 
 def solve_contact(
@@ -124,7 +116,7 @@ def solve_contact(
     problem = {"mean_pressure": mean_pressure, "approach": approach, "rtol": rtol, "options": options}
     with blas_limit():  # small dense calls (bem.parallel)
         coarse_matvecs, initial_approach = 0.0, None
-        if (initial is None or options.coarsen_warm) and wants_coarse_start(op, heights, mean_pressure, options):
+        if wants_coarse_start(op, heights, mean_pressure, options):
             coarse, coarse_matvecs, coarse_approach = _coarse(op, heights, maxiter, initial, problem)
             if coarse is not None and (initial is None or not nearer(op, np.asarray(initial, dtype=float), coarse)):
                 initial, initial_approach = coarse, coarse_approach
@@ -167,38 +159,26 @@ def _coarse(op, heights, maxiter, initial, problem):
 
 
 def _retry_policy(op, heights, maxiter, problem):
-    """The fast attempt, then if needed the careful one.
-
-    Strongly non-symmetric operators go straight to the careful attempt (inner tolerances
-    that only tighten); on 2-D periodic grids they first try the line preconditioner, with
-    steps guarded by the max-norm residual, and give up on it once its residual stalls or
-    its share of ``maxiter`` is spent. Others try the fast attempt (inner tolerances relaxed
-    again after full steps) for :data:`FAST_SHARE` of ``maxiter``."""
+    """One attempt; strongly non-symmetric operators on 2-D periodic grids first try the line
+    preconditioner, and give up on it once its residual stalls or its share of ``maxiter`` is
+    spent."""
     o = problem["options"]
-    careful = strongly_nonsymmetric(op)
-    if careful and o.lines and o.precondition is None and isinstance(op, LineFactors) and op.factors_along_x:
+    lines = o.precondition is None and o.line_budget > 0 and isinstance(op, LineFactors) and op.factors_along_x
+    if lines and strongly_nonsymmetric(op):
         lines = Attempt(
             maxiter=max(1, int(LINES_MAXITER_SHARE * maxiter)),
-            eta=LINES_ETA,
-            relax=False,
+            eta=o.inner_eta,
             precondition="lines",
             own_forcing=True,
             residual_stall=LINES_RESIDUAL_STALL,
-            guard=True,
         )
         first = attempt_solve(op, heights, attempt=lines, **problem)
         if first.success or first.attainable is not None or maxiter < 2:
             return first
         log.info("retrying without the line preconditioner: %s", first.message)
-        second = Attempt(maxiter=max(1, maxiter - first.iterations), eta=o.inner_eta, relax=False, guard=True)
+        second = Attempt(maxiter=max(1, maxiter - first.iterations), eta=o.inner_eta)
         return _after(first, attempt_solve(op, heights, attempt=second, **problem))
-    fast = Attempt(maxiter=maxiter if careful else math.ceil(FAST_SHARE * maxiter), eta=o.inner_eta, relax=not careful)
-    first = attempt_solve(op, heights, attempt=fast, **problem)
-    if first.success or first.attainable is not None or maxiter < 2 or careful:
-        return first
-    log.info("retrying with monotone inner tolerances: %s", first.message)
-    second = Attempt(maxiter=maxiter - first.iterations, eta=o.inner_eta, relax=False)
-    return _after(first, attempt_solve(op, heights, attempt=second, **problem))
+    return attempt_solve(op, heights, attempt=Attempt(maxiter=maxiter, eta=o.inner_eta), **problem)
 
 
 def _after(first, second):

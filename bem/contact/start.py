@@ -57,7 +57,7 @@ any grid (module docstring); below it the coarse problem no longer resembles the
 COARSE_RTOL = 1e-4
 """Residual of the coarse solve (at least the caller's rtol): interpolation error dominates anyway."""
 NEAR_FULL_CONTACT = 0.1
-"""Tension share under which the clipped full-contact pressure is the start (it is nearly the answer)."""
+"""Tension share under which the clipped full-contact pressure is the start (it is nearly the answer). Ablation row "coarse start": off costs 1.19x the products (1.26x the geometric mean of the cases). Ablation row "strong coarse start": off costs 1.19x the products. Ablation row "coarse start". Ablation row "near-full start": off costs 7.7x the products and breaks the 10 rtol pressure bound (39 rtol)."""
 
 
 def full_contact_pressure(op, ht, mean_pressure):

@@ -8,8 +8,7 @@ the solid. Workflow:
    (:class:`IsolatedHalfSpace`, zero-padded FFT of the influence coefficients of
    :mod:`.influence`);
 2. sliding along another direction than ``+x``: the operators of :mod:`.directed`;
-3. isolated contacts on a non-uniform mesh refined around the contact: :mod:`.adaptive`
-   (its own solver, reached through ``bem.solve(..., periodic=False, method="adaptive")``);
+3. the operators of the last few problems are kept by :mod:`.cache` and reused;
 4. the contact solver (:mod:`bem.contact`) uses any of them through ``displacement(p)`` and
    the few methods listed in :func:`bem.contact.solve_contact`.
 """

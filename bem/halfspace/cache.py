@@ -7,19 +7,28 @@ temperatures). :func:`operator_for` keeps the last :data:`SIZE` operators, keyed
 defines them: the kind of domain, the grid, the cell side, the material's values (not its
 identity: a material rebuilt with the same numbers reuses the operator), the speed and the
 sliding direction.
+
+The tables of influence coefficients that other operators are built from (the adaptive mesh's
+lattice tables, :mod:`bem.adaptive.square`) are kept here too, by :func:`table_for`, so that one
+module decides what operators and their parts stay in memory.
 """
 
 from .directed import DirectedIsolatedHalfSpace, DirectedPeriodicHalfSpace
 from .isolated import IsolatedHalfSpace
 from .periodic import PeriodicHalfSpace
 
-__all__ = ["SIZE", "clear_operator_cache", "operator_for"]
+__all__ = ["SIZE", "TABLES", "clear_operator_cache", "operator_for", "table_for"]
 
 SIZE = 4
 """Operators kept: a sweep over several loads or realisations reuses the speed's operator, and
 a few grids' worth of symbols and kernels stay well under the memory of their solves."""
 
+TABLES = 8
+"""Tables kept: the elastic and slope tables and one creep table per Prony term of a few lattices,
+reused across the refinement levels of a solve and across its speeds."""
+
 _operators = {}
+_tables = {}
 
 
 def _material_key(material):
@@ -45,7 +54,18 @@ def operator_for(surface, material, speed, periodic=True, direction=0.0):
     return op
 
 
+def table_for(key, build):
+    """The table ``build()`` made for ``key`` (a hashable description of what defines it), built
+    once and kept among the last :data:`TABLES`."""
+    if key not in _tables:
+        if len(_tables) >= TABLES:
+            _tables.pop(next(iter(_tables)))
+        _tables[key] = build()
+    return _tables[key]
+
+
 def clear_operator_cache():
-    """Forget the operators :func:`operator_for` keeps, e.g. to time an operator's construction
-    or to free its memory."""
+    """Forget the operators :func:`operator_for` keeps and the tables of :func:`table_for`, e.g.
+    to time an operator's construction or to free its memory."""
     _operators.clear()
+    _tables.clear()

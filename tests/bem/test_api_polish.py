@@ -6,9 +6,9 @@ import pytest
 
 import bem
 from bem import surfaces
+from bem.adaptive import solve_adaptive
 from bem.checks import check_int, check_positive, check_range, show
 from bem.errors import InputError
-from bem.halfspace.adaptive import solve_adaptive
 from bem.sliding import ADAPTIVE_OPTIONS
 
 ELASTIC = bem.Material.elastic(1e7)

@@ -125,7 +125,7 @@ def test_warm_start_goes_through_the_coarse_grid_and_is_kept_only_where_it_is_cl
     assert own.iterations == 1  # the fine warm start was kept: it is the answer
     far = bem.solve(s, m, speed=0.0, load=0.6).pressure
     through = bem.solve(s, m, speed=0.0, load=6.0, initial=far)
-    fine_only = bem.solve(s, m, speed=0.0, load=6.0, initial=far, contact_options=ContactOptions(coarsen_warm=False))
+    fine_only = bem.solve(s, m, speed=0.0, load=6.0, initial=far, contact_options=ContactOptions(coarsen=False))
     assert through.iterations <= cold.iterations + 1 < fine_only.iterations
     assert through.matvecs < 0.8 * fine_only.matvecs
     for r in (own, through, fine_only):

@@ -33,7 +33,7 @@ def test_special_fields_are_validated():
     with pytest.raises(InputError, match="options.precondition"):
         ContactOptions(precondition="lines")
     with pytest.raises(dataclasses.FrozenInstanceError):
-        ContactOptions().lines = False
+        ContactOptions().coarsen = False
 
 
 def test_the_contract_is_small():
@@ -65,7 +65,7 @@ def test_solve_contact_rejects_bad_controls():
     with pytest.raises(InputError, match="mean_pressure and approach"):
         solve_contact(op, h, mean_pressure=1e3, approach=1e-7)
     with pytest.raises(InputError, match="options"):
-        solve_contact(op, h, mean_pressure=1e3, options={"lines": False})
+        solve_contact(op, h, mean_pressure=1e3, options={"coarsen": False})
 
 
 def test_options_reach_the_solver():

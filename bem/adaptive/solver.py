@@ -13,13 +13,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...checks import check_int, check_positive, show
-from ...contact import solve_contact
-from ...contact.options import MAXITER, RTOL
-from ...errors import ConvergenceError, InputError
-from ...materials.material import Material
-from ...result import SlidingResult
-from ...surfaces.surface import Surface
+from ..checks import check_int, check_positive, show
+from ..contact import solve_contact
+from ..contact.options import MAXITER, RTOL
+from ..errors import ConvergenceError, InputError
+from ..materials.material import Material
+from ..result import SlidingResult
+from ..surfaces.surface import Surface
 from .assembly import ForceOperator, influence_matrix, phase_symbol
 from .mesh import element_values, marked_elements, owner, refine, uniform_mesh
 

@@ -13,7 +13,8 @@ is the sum over its cells (superposition, exact), taken from summed-area tables.
 
 import numpy as np
 
-from ..influence import love_corner
+from ..halfspace.cache import table_for
+from ..halfspace.influence import love_corner
 
 __all__ = ["cell_creep_table", "matrices_2d"]
 
@@ -95,18 +96,6 @@ def cell_creep_table(n, h, shift):
     return table
 
 
-_TABLES = {}
-
-
-def _cached(key, build):
-    """Small cache of lattice tables, reused across refinement levels and calls."""
-    if key not in _TABLES:
-        if len(_TABLES) >= 8:
-            _TABLES.pop(next(iter(_TABLES)))
-        _TABLES[key] = build()
-    return _TABLES[key]
-
-
 def _half_offsets(mesh, rows):
     """Per axis: the collocation points of ``rows`` in half-cell units from the domain start
     (``2 start + size``), and every element's first and one-past-last edge (``2 start``,
@@ -161,12 +150,12 @@ def matrices_2d(mesh, material, speed, with_slope=True, chunk=512):
     square-element mesh."""
     n, h = mesh.n, mesh.spacing
     lattice = 0.5 * h * np.arange(-2 * n, 2 * n + 1)
-    love = _cached(("love", n, h), lambda: love_corner(lattice[:, None], lattice[None, :]))
-    love_dx = _cached(("love_dx", n, h), lambda: _love_slope_corner(lattice[:, None], lattice[None, :]))
+    love = table_for(("adaptive", "love", n, h), lambda: love_corner(lattice[:, None], lattice[None, :]))
+    love_dx = table_for(("adaptive", "love_dx", n, h), lambda: _love_slope_corner(lattice[:, None], lattice[None, :]))
     factor = material.plane_strain_factor / np.pi
     shifts = speed * material.creep_times
     tables = {
-        k: _cached(("creep", n, h, L), lambda L=L: cell_creep_table(n, h, L))
+        k: table_for(("adaptive", "creep", n, h, L), lambda L=L: cell_creep_table(n, h, L))
         for k, L in enumerate(shifts)
         if L >= 1e-4 * h
     }

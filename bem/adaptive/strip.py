@@ -15,7 +15,7 @@ by its power series for ``|t| <= 1`` so that large ``L`` does not cancel (docs/t
 import numpy as np
 from scipy import special
 
-from ..influence import log_antiderivative
+from ..halfspace.influence import log_antiderivative
 
 __all__ = ["matrices_1d"]
 

@@ -8,10 +8,10 @@ coarse uniform mesh; elements in contact, near the contact edge (``buffer``) or 
 steep pressure jump (``gradient``) are split in 2 (strips) or 4 (squares), and the problem is
 solved again, ``levels`` times, until the refined elements are the cells of the fine grid.
 
-Modules: :mod:`~bem.halfspace.adaptive.mesh` (elements, refinement rules, sampling of the indenter),
-:mod:`~bem.halfspace.adaptive.square` and :mod:`~bem.halfspace.adaptive.strip` (influence coefficients of square
-and strip elements), :mod:`~bem.halfspace.adaptive.assembly` (the dense matrices and the contact
-operator), :mod:`~bem.halfspace.adaptive.solver` (the refinement loop, :func:`solve_adaptive`).
+Modules: :mod:`~bem.adaptive.mesh` (elements, refinement rules, sampling of the indenter),
+:mod:`~bem.adaptive.square` and :mod:`~bem.adaptive.strip` (influence coefficients of square
+and strip elements), :mod:`~bem.adaptive.assembly` (the dense matrices and the contact
+operator), :mod:`~bem.adaptive.solver` (the refinement loop, :func:`solve_adaptive`).
 
 Response (docs/theory.md §3), indenter moving in ``+x``, displacement positive into the solid::
 

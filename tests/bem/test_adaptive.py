@@ -1,6 +1,6 @@
-"""Adaptive non-uniform mesh BEM (bem.halfspace.adaptive): kernels, elastic limits, Hunter, convergence.
+"""Adaptive non-uniform mesh BEM (bem.adaptive): kernels, elastic limits, Hunter, convergence.
 
-Conventions as in :mod:`bem.halfspace.adaptive`: the indenter moves in +x, heights positive toward the
+Conventions as in :mod:`bem.adaptive`: the indenter moves in +x, heights positive toward the
 half-space, coordinates centred on the domain.
 """
 
@@ -8,10 +8,9 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from bem import Material, surfaces
+from bem import Material, adaptive, surfaces
+from bem.adaptive import square, strip
 from bem.errors import InputError
-from bem.halfspace import adaptive
-from bem.halfspace.adaptive import square, strip
 from bem.halfspace.influence import love_corner
 from validation.references.bruteforce_line import strip_kernel
 from validation.references.hertz import line_contact, point_contact
