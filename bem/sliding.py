@@ -261,7 +261,16 @@ def _load_of_pressure(surface, nominal_pressure, load, approach, factor):
             "nominal_pressure (Pa, the mean pressure) or approach (m; displacement control), got "
             + (" and ".join(given) if given else "none of them")
         )
+    return load_of_pressure(surface, nominal_pressure, factor)
+
+
+def load_of_pressure(surface, nominal_pressure, factor=None):
+    """The ``load`` argument of :func:`solve` (N, or N/m for profiles; on the scanned patch for a
+    measured surface) that puts the mean pressure ``nominal_pressure`` (Pa) on ``surface``.
+    ``factor``: :func:`bem.surfaces.measured.load_factor` of the surface, if already known."""
     surface = _as_surface(surface)
+    if factor is None:
+        factor = measured_patch.load_factor(surface)
     cell_load = check_positive("nominal_pressure", nominal_pressure) * surface.length**surface.ndim
     return cell_load if factor is None else cell_load / factor
 

@@ -158,14 +158,22 @@ def check_sweep(surface, material, *, speeds, loads, rtol):
             sliding.check_inputs(surface, material, speed, f_n, None, rtol)
 
 
-def _loads(load):
-    if isinstance(load, (list, tuple, np.ndarray)):
-        if len(load) == 0:
-            raise InputError(
-                f"load must be a number > 0 or a non-empty list of them (N; N/m for profiles), got {show(load)}"
-            )
-        return [check_positive("load", x) for x in load], True
-    return [load], False
+def _loads(surface, load, nominal_pressure):
+    """The loads of :func:`friction_curve` (from ``nominal_pressure`` if that is given) and
+    whether a list was given."""
+    if (load is None) == (nominal_pressure is None):
+        raise InputError(
+            "give exactly one of load (N, or N/m for profiles; on the scanned patch for a measured surface) "
+            "and nominal_pressure (Pa, the mean pressure)"
+        )
+    name, given = ("load", load) if load is not None else ("nominal_pressure", nominal_pressure)
+    several = isinstance(given, (list, tuple, np.ndarray))
+    if several and len(given) == 0:
+        raise InputError(f"{name} must be a number > 0 or a non-empty list of them, got {show(given)}")
+    values = [check_positive(name, x) for x in given] if several else [given]
+    if nominal_pressure is not None:
+        values = [sliding.load_of_pressure(surface, p) for p in values]
+    return values, several
 
 
 def friction_curve(
@@ -173,7 +181,8 @@ def friction_curve(
     material,
     *,
     speeds,
-    load,
+    load=None,
+    nominal_pressure=None,
     rtol=RTOL,
     maxiter=MAXITER,
     warm_start=True,
@@ -192,7 +201,11 @@ def friction_curve(
     speeds : array_like
         Sliding speeds (m/s), >= 0.
     load : float or list of float
-        Normal force (N; N/m for profiles). A list gives one curve per load.
+        Normal force (N; N/m for profiles; on the scanned patch for a measured surface). A list
+        gives one curve per load.
+    nominal_pressure : float or list of float
+        Mean pressure (Pa) instead of ``load`` (exactly one of the two); a list gives one curve
+        per pressure. Each curve's ``load`` is the force it puts on the cell (on the patch).
     progress : bool
         Show a progress bar (tqdm).
     callback : callable, optional
@@ -220,7 +233,7 @@ def friction_curve(
     speeds = speeds.astype(float)
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)) or np.any(speeds < 0):
         raise InputError(f"speeds must be a non-empty 1-D list of finite speeds >= 0 m/s, got {show(speeds.tolist())}")
-    loads, several = _loads(load)
+    loads, several = _loads(surface, load, nominal_pressure)
     check_estimate(error_estimate)
     checked = [sliding.check_inputs(surface, material, 0.0, x, None, rtol) for x in loads]
     surface, rtol = checked[0][0], checked[0][4]

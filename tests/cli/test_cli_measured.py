@@ -163,3 +163,32 @@ def test_speeds_beyond_what_the_scan_holds_are_warned_about(folder):
     assert rec["measured"]["speed_limit"] == pytest.approx(317 * 380e-6 / (2 * np.pi), rel=0.02)
     assert sum("is above" in w and "longer than the scanned patch" in w for w in rec["warnings"]) == 1
     assert any(w.startswith("at xi = 1.32:") and "longer than the scanned patch" in w for w in rec["warnings"])
+
+
+def test_nominal_pressure_is_the_load_it_puts_on_the_patch(folder):
+    """[loading] nominal_pressure (Pa) instead of load: the scene solves the patch load that pressure
+    puts on the scanned patch, the same friction to round-off; giving both is one line."""
+    by_load = json.loads(_run(folder, "load = 0.02"))
+    side = by_load["measured"]["patch_side"]
+    by_pressure = json.loads(_run(folder, f"nominal_pressure = {0.02 / side**2!r}"))
+    assert by_pressure["loads"] == pytest.approx([0.02], rel=1e-12)
+    assert by_pressure["friction_curve"]["friction"][0] == pytest.approx(
+        by_load["friction_curve"]["friction"][0], rel=1e-12
+    )
+    path = folder / "both.toml"
+    path.write_text(
+        SCENE.replace("BOUNDARY", "").replace("LOAD", "0.02\nnominal_pressure = 1e5").replace("PLOTS", "false")
+    )
+    with pytest.raises(
+        bem.InputError, match=r"exactly one of load .* and nominal_pressure .*, got load and nominal_pressure"
+    ):
+        scenes.load(path)
+
+
+def _run(folder, loading):
+    path = folder / "p.toml"
+    text = SCENE.replace("BOUNDARY", "").replace("load = LOAD", loading).replace("PLOTS", "false")
+    path.write_text(text)
+    out = folder / ("out-" + loading.split()[0])
+    assert main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    return (out / "results.json").read_text()

@@ -122,7 +122,16 @@ SCHEMA = {
         "transpose",
         "patch",
     },  # kind = "measured"
-    "loading": {"load", "speeds", "xi", "xi_time", "temperatures", "superposition", "direction_deg"},
+    "loading": {
+        "load",
+        "nominal_pressure",
+        "speeds",
+        "xi",
+        "xi_time",
+        "temperatures",
+        "superposition",
+        "direction_deg",
+    },
     "solver": {
         "rtol",
         "maxiter",
@@ -307,9 +316,7 @@ def parse(text, *, base=Path("."), source="<string>", overrides=()):
     realisations = _surface(raw["surface"], base)
     surface = realisations[0]
     _check_keys(raw["loading"], "loading")
-    if "load" not in raw["loading"]:
-        raise InputError("[loading] load is required (N for 2-D surfaces, N/m for 1-D profiles)")
-    loads = scene_values.loads(raw["loading"]["load"])
+    loads = scene_values.loads(raw["loading"], surface)
     tau, tau_source = scene_values.xi_time(raw["loading"], material)
     kind = raw["surface"]["kind"]
     xi_length = (

@@ -208,7 +208,16 @@ KEYS = [
         "N (N/m for 1-D)",
         None,
         "> 0",
-        "Normal force; a list sweeps loads (required; measured: on the scanned patch).",
+        "Normal force; a list sweeps loads (this or nominal_pressure; measured: on the scanned patch).",
+    ),
+    Key(
+        "loading",
+        "nominal_pressure",
+        "number or list",
+        "Pa",
+        None,
+        "> 0",
+        "Mean pressure instead of load: the force it puts on the cell (on the scanned patch, if measured).",
     ),
     Key("loading", "speeds", "list", "m/s", None, ">= 0", "Sliding speeds (or xi)."),
     Key(

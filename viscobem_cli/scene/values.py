@@ -50,15 +50,30 @@ def outputs(t, surface):
     return outputs, precision
 
 
-def loads(value):
+def loads(loading, surface):
+    """The loads (N; N/m for 1-D profiles; on the scanned patch for a measured surface) of the
+    [loading] table: its ``load``, or the forces its ``nominal_pressure`` (Pa) puts on ``surface``."""
+    given = [k for k in ("load", "nominal_pressure") if k in loading]
+    if len(given) != 1:
+        raise InputError(
+            "[loading] needs exactly one of load (N for 2-D surfaces, N/m for 1-D profiles; on the scanned "
+            "patch for a measured surface) and nominal_pressure (Pa, the mean pressure), got "
+            + (" and ".join(given) if given else "neither")
+        )
+    key = given[0]
+    value = loading[key]
     values = value if isinstance(value, list) else [value]
     if not values or not all(
         isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < np.inf for v in values
     ):
+        unit = "N; N/m for 1-D profiles" if key == "load" else "Pa"
         raise InputError(
-            f"[loading] load must be a finite number > 0 or a non-empty list of them "
-            f"(N; N/m for 1-D profiles), got {value!r}"
+            f"[loading] {key} must be a finite number > 0 or a non-empty list of them ({unit}), got {value!r}"
         )
+    if key == "nominal_pressure":
+        from bem.sliding import load_of_pressure
+
+        return tuple(float(load_of_pressure(surface, p)) for p in values)
     return tuple(float(v) for v in values)
 
 

@@ -72,3 +72,22 @@ def test_curve_warnings_keep_each_distinct_finding_with_its_own_speeds():
     assert len(out) == 2
     assert out[0].startswith("at 2 of 3 speeds (v = 0.001 m/s, v = 0.01 m/s") and "below" in out[0]
     assert out[1].startswith("at v = 10 m/s:") and "above" in out[1]
+
+
+def test_curve_takes_a_nominal_pressure_per_curve(scan):
+    """friction_curve takes nominal_pressure (Pa) as solve does: each curve is the one of the patch
+    load that pressure puts on the patch, and a list gives one curve per pressure."""
+    patch_area = (0.625e-3) ** 2
+    by_pressure = bem.friction_curve(scan, SLS, speeds=[1e-4, 1e-2], nominal_pressure=2e4)
+    by_load = bem.friction_curve(scan, SLS, speeds=[1e-4, 1e-2], load=2e4 * patch_area)
+    np.testing.assert_allclose(by_pressure.friction, by_load.friction, rtol=1e-12)
+    assert by_pressure.load == pytest.approx(2e4 * patch_area, rel=1e-12)
+    curves = bem.friction_curve(scan, SLS, speeds=[1e-4], nominal_pressure=[1e4, 2e4])
+    assert [c.results[0].pressure.mean() for c in curves] == pytest.approx([1e4, 2e4], rel=1e-9)
+    for given in ({}, dict(load=0.01, nominal_pressure=2e4)):
+        with pytest.raises(bem.InputError, match="exactly one of load .* and nominal_pressure"):
+            bem.friction_curve(scan, SLS, speeds=[1e-4], **given)
+    with pytest.raises(bem.InputError, match="nominal_pressure must be"):
+        bem.friction_curve(scan, SLS, speeds=[1e-4], nominal_pressure=[])
+    with pytest.raises(bem.InputError, match="nominal_pressure"):
+        bem.friction_curve(scan, SLS, speeds=[1e-4], nominal_pressure=[2e4, -1.0])
