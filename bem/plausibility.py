@@ -73,15 +73,18 @@ def check_moduli(E0, E_inf, *, names=("E0", "E_inf"), hint=""):
         )
 
 
-def height_checks(heights, side, *, name="heights"):
+UNIT_ADVICE = "Heights in micrometres given as metres? Give unit='um' (scene: unit = \"um\") or multiply by 1e-6"
+
+
+def height_checks(heights, side, *, name="heights", advice=UNIT_ADVICE):
     """Warnings (sentences) about heights (m) on a cell of lateral size ``side`` (m); an
-    InputError when they span more than the cell."""
+    InputError when they span more than the cell, ending with ``advice`` (which unit to fix)."""
     h = np.asarray(heights, dtype=float)
     span = float(h.max() - h.min())
     if span > side:
         raise InputError(
             f"{name} span {span:.4g} m on a cell of {side:.4g} m: taller than wide, which no contact surface is. "
-            "Heights in micrometres given as metres? Give unit='um' (scene: unit = \"um\") or multiply by 1e-6"
+            + advice
         )
     spacing = side / h.shape[0]
     grads = [np.gradient(h, spacing)] if h.ndim == 1 else np.gradient(h, spacing, spacing)

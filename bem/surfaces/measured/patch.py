@@ -237,7 +237,9 @@ def to_surface(
     )
     piece = detrend_(piece, detrend)
     done = piece.source["detrend"]
-    found = height_checks(piece.heights, max(piece.physical_sizes), name="the scan's heights")
+    found = height_checks(
+        piece.heights, max(piece.physical_sizes), name="the scan's heights", advice=_unit_advice(piece)
+    )
     found += find_steps(piece.heights, piece.spacing)
     mismatch = edge_mismatch(piece.heights)
     record = {
@@ -412,3 +414,18 @@ def patch_argument(record):
     if not patch or patch.get("selection") == "centre" or len(patch.get("origin", ())) < 2:
         return "centre"
     return (*patch["origin"], patch["side"])
+
+
+def _unit_advice(measurement):
+    """Which unit to fix when a scan's heights span more than its patch: heights and sizes are
+    read in one unit, so either the heights or the sizes were given in another."""
+    source = measurement.source
+    unit = source.get("file_unit") or "m"
+    sizes = " x ".join(f"{x:.4g}" for x in measurement.physical_sizes)
+    if source.get("sizes_from_file", False):
+        return f"The file gives the scan's sizes as {sizes} m; are its heights in another unit than it says?"
+    return (
+        f"Heights and physical_sizes are both read in unit ({unit!r}), which makes the scan {sizes} m: "
+        "give both in that unit (sizes in metres with unit='um' make the scan a million times too small), "
+        "or heights in micrometres given as metres need unit='um'"
+    )

@@ -119,6 +119,13 @@ def test_micrometres_given_as_metres_are_refused(heights):
         bem.solve(bem.surfaces.from_heights(heights[:NX, :NX] * 5, 4e-3), bem.Material.elastic(1e7), speed=0, load=1)
 
 
+def test_sizes_in_metres_with_heights_in_micrometres_are_refused_naming_physical_sizes(heights):
+    """unit names the heights' and the sizes' unit alike: sizes in metres beside unit='um' make the
+    scan 4 nm wide, and the message says that physical_sizes are read in that unit."""
+    with pytest.raises(InputError, match=r"physical_sizes are both read in unit \('um'\).*the scan 4e-09 x 4e-09 m"):
+        bem.surfaces.from_scan(heights, 16, physical_sizes=(4e-3, 6e-3), unit="um")
+
+
 def test_comma_separated_matrix_is_read_by_from_scan(heights, tmp_path):
     np.savetxt(tmp_path / "export.csv", heights, delimiter=",", header="heights in um", comments="# ")
     s = _quiet(bem.surfaces.from_scan, tmp_path / "export.csv", 16, physical_sizes=SIZES, unit="um", patch=(0, 0))
