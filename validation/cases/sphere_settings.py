@@ -52,7 +52,6 @@ _ISO_F = dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.03)
 QUICK_SPHERE = dict(
     s=[1e-2],
     cells=12,
-    resolution=4,
     tol={
         "fem": dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08),
         "bem-periodic": dict(l2=0.02, peak=0.005, edge=1.0, asymptote=0.025, excess=0.005),
@@ -63,7 +62,6 @@ QUICK_SPHERE = dict(
 FULL_SPHERE = dict(
     s=[1e-3, 3e-3, 1e-2],
     cells=16,
-    resolution=8,
     tol={
         "fem": dict(edge=0.5, approach=0.004, peak=0.01, l2=0.04),
         "bem-periodic": dict(l2=0.015, peak=0.005, edge=1.0, asymptote=0.02, excess=0.005),
@@ -73,13 +71,9 @@ FULL_SPHERE = dict(
 )
 QUICK_CREEP = dict(
     t=[0.0, 0.3, 1.0, 3.0, 10.0],
-    resolution=4,
-    steps_per_decade=10,
     tol=dict(edge=0.5, approach=0.005, peak=0.015, l2=0.08, axis=0.01),
 )
 FULL_CREEP = dict(
     t=[0.0, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0],
-    resolution=8,
-    steps_per_decade=20,
     tol=dict(edge=0.5, approach=0.004, peak=0.015, l2=0.04, axis=0.004),
 )
