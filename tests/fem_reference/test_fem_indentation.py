@@ -76,15 +76,15 @@ def test_confined_creep_time_update():
 @pytest.mark.parametrize("nu", [0.3, 0.5])
 def test_hertz_limits(nu):
     # t = 0+ is Hertz with E_inf and t -> inf Hertz with E0 (a step of 1e4 creep times
-    # leaves alpha = eps to round-off, whatever the path). 8 elements per glassy radius:
-    # contact radius within a quarter node spacing of Hertz (nodal contact; measured
-    # 0.3-0.4 %), peak pressure 1 % (measured 0.3 %), approach 0.5 % (block of 1000 a0:
-    # truncation ~ 0.1 %).
+    # leaves alpha = eps to round-off, whatever the path). 8 elements per local contact radius:
+    # contact radius within a quarter of the local element a/8 (read from the gaps of the first
+    # free nodes; the glassy edge falls on a node, the relaxed one measured 0.12 element off), peak
+    # pressure 1 % (measured 0.3 %), approach 0.5 % (block of 1000 a0: truncation ~ 0.1 %).
     m = Material.standard_linear_solid(E0=1e6, E_inf=3e6, creep_time=1.0, nu=nu)
     r = indentation(m, radius=R, load=P, times=[0.0, 1e4], resolution=8, steps_per_decade=1)
     for i, E in enumerate((m.E_inf, m.E0)):
         hz = point_contact(E, nu, R, P)
-        assert abs(r.contact_radius[i] - hz.a) <= r.element_size / 8
+        assert abs(r.contact_radius[i] - hz.a) <= hz.a / 8 / 4
         assert r.peak_pressure[i] == pytest.approx(hz.p0, rel=0.01)
         assert r.approach[i] == pytest.approx(hz.delta, rel=0.005)
 
@@ -93,14 +93,14 @@ def test_lee_radok_creep():
     # Step load on a standard linear solid: a(t)^3 = (3R/4) P (1 - nu^2) J(t) and
     # delta(t) = a(t)^2 / R (Lee & Radok 1960). The approach is a global measure: measured
     # within 0.11 % at 40 steps/decade, 0.2 % at the default 20; tolerance 0.5 %. The
-    # contact radius from nodal pressures carries the node quantisation of a moving edge
-    # (measured up to 0.2 node spacing); tolerance a quarter node spacing.
+    # contact radius read from the gaps carries the node quantisation of a moving edge (measured
+    # up to 0.14 of the local element a/6); tolerance a quarter of it.
     m = Material.standard_linear_solid(E0=1e6, E_inf=3e6, creep_time=1.0, nu=0.5)
     times = np.array([0.0, 0.3, 1.0, 3.0, 10.0, 100.0])
     r = indentation(m, radius=R, load=P, times=times, resolution=6)
     a_lr = (0.75 * R * P * (1 - m.nu**2) * m.creep_compliance(times)) ** (1 / 3)
     np.testing.assert_allclose(r.approach, a_lr**2 / R, rtol=0.005)
-    assert np.max(np.abs(r.contact_radius - a_lr)) <= r.element_size / 8
+    assert np.all(np.abs(r.contact_radius - a_lr) <= a_lr / 6 / 4)
     assert np.all(np.diff(r.contact_radius) >= -r.element_size / 8)  # creep: contact grows
 
 

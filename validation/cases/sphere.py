@@ -302,7 +302,12 @@ def run_creep(*, quick, vtk_dir, root, tamper):
         )
     )
     out.numbers["times"] = times.tolist()
-    out.numbers["fem"] = dict(contact_radius=fem.contact_radius.tolist(), approach=fem.approach.tolist())
+    out.numbers["fem"] = dict(
+        contact_radius=fem.contact_radius.tolist(),
+        approach=fem.approach.tolist(),
+        error_estimate={k: np.asarray(v).tolist() for k, v in fem.error_estimate.items()},
+        warnings=list(fem.warnings),
+    )
     out.numbers["exact"] = dict(contact_radius=a_ex.tolist(), approach=d_ex.tolist())
     return out
 
