@@ -154,10 +154,10 @@ def test_creep_mesh_is_as_fine_relative_to_every_contact_radius_it_sweeps(ratio)
 
 def test_a_coarse_mesh_warns_and_its_estimate_covers_its_error():
     # Two elements per contact radius and 4 steps per decade on a standard solid, E_inf/E0 = 10:
-    # contact radius up to 3.0 % and approach up to 2.4 % off Lee & Radok. The estimate (the change
-    # on the mesh shifted by half an element at half the steps per decade, or the elastic limits'
-    # error) says 7.6 % and 3.0 % at worst, and warns; a result whose estimate said less than its
-    # worst error would let a wrong reference pass.
+    # contact radius up to 3.0 % and approach up to 2.4 % off Lee & Radok. The estimate (twice the
+    # change on the mesh shifted by half an element at half the steps per decade, or the elastic
+    # limits' error) says 15 % and 6.0 % at worst, at least the error at every time, and warns; a
+    # result whose estimate said less than its worst error would let a wrong reference pass.
     m = Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=1.0, nu=0.5)
     times = np.array([0.0, 0.3, 1.0, 3.0, 10.0, 100.0])
     r = indentation(m, radius=R, load=P, times=times, resolution=2, steps_per_decade=4)
@@ -174,13 +174,17 @@ def test_a_coarse_mesh_warns_and_its_estimate_covers_its_error():
 @pytest.mark.slow
 def test_lee_radok_on_a_held_out_rubber_at_the_default_mesh():
     # A 5-term rubber no other test uses (E_inf/E0 = 50, tau = 1e-4..1e-1 s, E0 = 2 MPa), called
-    # with no mesh argument. Measured against Lee & Radok at 10 times from 0 to 1000 creep times:
-    # contact radius within MEASURED_A, approach within MEASURED_D; tolerances 1.5 % and 0.75 %
-    # (the contact radius is read from the first free nodes' gaps, whose error moves erratically
-    # with where the edge falls between nodes: up to 1.3 % on the rubbers of docs/theory.md §9).
+    # with no mesh argument (88 s, 0.6 GiB). Measured against Lee & Radok at 10 times from 0 to
+    # 1000 creep times: contact radius within 1.45 % (mid-creep, where the moving edge's layer is
+    # thinner than an element; <= 0.34 % elsewhere), approach within 0.30 %. Tolerances 2 % and
+    # 0.5 % (margins 1.4x and 1.7x). Where the contact radius is off by more than 1 % the estimate
+    # must say so (measured 1.66 % against the 1.45 % error).
     m = Material.from_prony(E0=2e6, moduli=np.full(5, 2e6 * 49 / 5), times=np.geomspace(1e-4, 1e-1, 5))
     times = np.concatenate([[0.0], np.geomspace(1e-5, 1e3 * float(np.max(m.creep_times)), 9)])
     r = indentation(m, radius=R, load=P, times=times)
     assert r.success
-    np.testing.assert_allclose(r.contact_radius, lee_radok.contact_radius(m, R, P, times), rtol=0.015)
-    np.testing.assert_allclose(r.approach, lee_radok.approach(m, R, P, times), rtol=0.0075)
+    err_a = np.abs(r.contact_radius / lee_radok.contact_radius(m, R, P, times) - 1)
+    err_d = np.abs(r.approach / lee_radok.approach(m, R, P, times) - 1)
+    assert np.max(err_a) <= 0.02 and np.max(err_d) <= 0.005
+    assert np.all(r.error_estimate["contact_radius"][err_a > 0.01] >= err_a[err_a > 0.01])
+    assert np.max(r.error_estimate["approach"]) >= np.max(err_d)
