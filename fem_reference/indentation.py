@@ -42,8 +42,8 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-# Elements per local contact radius by default: the finest whose solve (and its shifted twin) stays
-# within about 4 minutes on an 18-term rubber at E_inf/E0 = 3000 (docs/theory.md §9).
+# Elements per local contact radius by default: the finest whose solve and its shifted twin stay
+# under five minutes on an 18-term rubber at E_inf/E0 = 3000 (271 s, 1.0 GiB; docs/theory.md §9).
 RESOLUTION = 12
 # A result whose error estimate exceeds this share warns.
 ESTIMATE_LIMIT = 0.01
