@@ -46,18 +46,10 @@ SPHERE_BEM = {
 }
 
 
-def _fem_indentation(material, times, resolution, steps_per_decade, load=P, vtk=None):
+def _fem_indentation(material, times, load=P, vtk=None):
     import fem_reference
 
-    return fem_reference.indentation(
-        material,
-        radius=R,
-        load=load,
-        times=np.asarray(times, float),
-        resolution=resolution,
-        steps_per_decade=steps_per_decade,
-        vtk=vtk,
-    )
+    return fem_reference.indentation(material, radius=R, load=load, times=np.asarray(times, float), vtk=vtk)
 
 
 def _a0(material):
@@ -72,7 +64,7 @@ def run_sphere(*, quick, vtk_dir, root, tamper):
     # --- FEM: both elastic limits from one step-load run
     # the two elastic limits depend on the moduli and the load only
     m_fem, _, p_fem = tamper.inputs("fem", material, 0.0, P, insensitive=("times", "speed"))
-    fem, cost = metrics.measure(_fem_indentation, m_fem, [0.0, 1000 * lam], cfg["resolution"], 5, p_fem)
+    fem, cost = metrics.measure(_fem_indentation, m_fem, [0.0, 1000 * lam], p_fem)
     out.cost("fem", "t=0+, 1000 lambda", cost, f"{fem.n_unknowns} unknowns, h = {fem.element_size:.3e} m")
     t = cfg["tol"]["fem"]
     for i, (label, modulus) in enumerate((("glassy (t=0+)", material.E_inf), ("relaxed (t=1000 lambda)", material.E0))):
@@ -219,7 +211,7 @@ def run_creep(*, quick, vtk_dir, root, tamper):
     out = CaseOutput()
     m_fem, _, p_fem = tamper.inputs("fem", material, 0.0, P)
     pvd = None if vtk_dir is None else vtk_dir / "fem" / "creep.pvd"
-    fem, cost = metrics.measure(_fem_indentation, m_fem, times, cfg["resolution"], cfg["steps_per_decade"], p_fem, pvd)
+    fem, cost = metrics.measure(_fem_indentation, m_fem, times, p_fem, pvd)
     if pvd is not None:
         out.files += [str(f.relative_to(root)) for f in sorted(pvd.parent.glob("creep_*.vtm"))]
         out.files.append(str(pvd.relative_to(root)))
@@ -310,7 +302,12 @@ def run_creep(*, quick, vtk_dir, root, tamper):
         )
     )
     out.numbers["times"] = times.tolist()
-    out.numbers["fem"] = dict(contact_radius=fem.contact_radius.tolist(), approach=fem.approach.tolist())
+    out.numbers["fem"] = dict(
+        contact_radius=fem.contact_radius.tolist(),
+        approach=fem.approach.tolist(),
+        error_estimate={k: np.asarray(v).tolist() for k, v in fem.error_estimate.items()},
+        warnings=list(fem.warnings),
+    )
     out.numbers["exact"] = dict(contact_radius=a_ex.tolist(), approach=d_ex.tolist())
     return out
 
