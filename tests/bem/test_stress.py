@@ -63,6 +63,7 @@ import bem
 from bem.errors import ConvergenceError
 from tests.conftest import perturbed
 from validation.references import periodic_exact as ref
+from viscobem_bench.contact import rubber14, rubber30
 
 pytestmark = pytest.mark.stress
 
@@ -408,22 +409,6 @@ def test_poisson(nu, ratio):
 
 
 # ---------------------------------------------------------------- held-out friction curves
-def rubber14(ratio=800.0, E0=2.5e6):
-    """A broad-spectrum rubber: 14 Prony terms, relaxation times 1e-6..1 s, moduli from two
-    log-normal bands (around 10^-4.5 s and 10^-1.5 s), scaled to ``E_inf/E0 = ratio``."""
-    tau = np.logspace(-6, 0, 14)
-    lt = np.log10(tau)
-    w = np.exp(-(((lt + 4.5) / 0.6) ** 2) / 2) + 0.6 * np.exp(-(((lt + 1.5) / 0.8) ** 2) / 2)
-    return bem.Material.from_prony(E0=E0, moduli=w / w.sum() * (ratio - 1) * E0, times=tau)
-
-
-def rubber30(ratio=1000.0, E0=1e6):
-    """30 Prony terms over 1e-9..1e3 s with a flat-topped spectrum: E_inf/E0 = ``ratio``."""
-    tau = np.logspace(-9, 3, 30)
-    w = 1.0 / (1.0 + ((np.log10(tau) + 3.0) / 4.0) ** 8)
-    return bem.Material.from_prony(E0=E0, moduli=w / w.sum() * (ratio - 1) * E0, times=tau)
-
-
 CURVE_XI = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3, 1e4]
 
 
