@@ -90,7 +90,7 @@ MECHANISMS = [
     ("lines maxiter share", "the line attempt may take half of maxiter", {}, {"solver:LINES_MAXITER_SHARE": 1.0}),
     ("long GMRES restarts", "restart length up to RESTART_MAX by memory (off: 30)", {}, {"krylov:RESTART_MAX": 30}),
     ("gap floor", "the gap scale is held above GAP_FLOOR_SHARE of the heights", {}, {"newton:GAP_FLOOR_SHARE": 0.0}),
-    ("round-off floor stop", "stop at the residual's round-off floor", {}, {"newton:FLOOR_STALLS": 10**9}),
+    ("round-off floor stop", "stop at the residual's round-off floor", {}, {"newton:FLOOR_MARGIN": 0.0}),
     (
         "reorthogonalisation",
         "GMRES's second Gram-Schmidt pass on cancellation (off: one pass)",
@@ -113,7 +113,6 @@ MECHANISMS = [
     ),
     ("restart floor", "at least RESTART_MIN GMRES vectors (off: 1)", {}, {"krylov:RESTART_MIN": 1}),
     ("settling changes", "a set is settling at <= 100 changes (off: 10)", {}, {"forcing:SETTLING_CHANGES": 10}),
-    ("floor stalls", "two steps at the floor stop (off: one)", {}, {"newton:FLOOR_STALLS": 1}),
     (
         "cycling steps",
         "five steps without a new low end the symmetric start (off: two)",

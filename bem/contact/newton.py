@@ -65,11 +65,9 @@ FLOOR_MARGIN = 30.0
 falling on a settled set is at the floor: the floor is an estimate of the precision of the
 gap and pressure, and the stalled residual measured a few times to tens of times above it.
 Ablation row "round-off floor stop": no product on the set (no case asks below its floor);
-without it a solve asked for too much crawls to ``maxiter`` (``tests/bem/contact/test_roundoff.py``)."""
-FLOOR_STALLS = 2
-"""Steps at the floor without a new low after which the attempt stops (one may be a late inner
-solve's gain). Ablation row "round-off floor stop" (the rule); row "floor stalls" (1 instead): no
-product on the set."""
+without it a solve asked for too much crawls to ``maxiter`` (``tests/bem/contact/test_roundoff.py``).
+The first settled step at the floor without a new low stops the attempt: row "floor stalls" (one
+such step instead of two) costs no product on the set."""
 
 
 @dataclass(frozen=True)
@@ -146,19 +144,17 @@ class SetTrack:
 
 @dataclass(frozen=True)
 class ResidualTrack:
-    """The lowest residual and the steps since; steps at the floor."""
+    """The lowest residual and the steps since; whether the last step stalled at the floor."""
 
     lowest: float
     since_lowest: int = 0
-    at_floor: int = 0
+    at_floor: bool = False
 
     def after(self, residual, *, unchanged, floor):
         lower = residual < self.lowest
         stuck = unchanged and not lower and residual <= FLOOR_MARGIN * floor
         return ResidualTrack(
-            lowest=min(self.lowest, residual),
-            since_lowest=0 if lower else self.since_lowest + 1,
-            at_floor=self.at_floor + 1 if stuck else 0,
+            lowest=min(self.lowest, residual), since_lowest=0 if lower else self.since_lowest + 1, at_floor=stuck
         )
 
 
@@ -255,7 +251,7 @@ class _Run:
 
     def go_on(self, it, outer, sets, residuals):
         a = self.attempt
-        if not it.residual > self.rtol or outer >= a.maxiter or residuals.at_floor >= FLOOR_STALLS:
+        if not it.residual > self.rtol or outer >= a.maxiter or residuals.at_floor:
             return False
         if a.stop_when_cycling and sets.stalled >= CYCLING_STEPS:
             return False
@@ -312,7 +308,7 @@ def _solution(run, it, outer, residuals):
         f"{outer} active-set iterations ({run.inner.matvecs} operator products)"
     )
     attainable = None
-    if not success and residuals.at_floor >= FLOOR_STALLS:
+    if not success and residuals.at_floor:
         # at the floor the residual is round-off: another path (another processor's rounding)
         # settles up to a floor higher, so what a solve can count on is the lowest plus the floor
         floor = roundoff_floor(pb, it)
