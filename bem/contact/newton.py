@@ -42,8 +42,8 @@ tight solves (ablation row "gap floor": no product on the set, but the 4096-poin
 SEARCH_HALVINGS = 12
 """Step lengths 1/2 ... 1/2**12 tried by the line search: they cost no product. Ablation row
 "twelve halvings" (4 instead): 0.70x the products on the case set (the sinusoid near full contact
-4738 against 9776), no case lost; the shorter search is not yet judged on the full set and the
-stress suite."""
+4738 against 9776), no case lost, but 0.999x on the six 512² friction curves of ``viscobem bench
+curve``, where the cost is (``docs/theory.md`` §4.2): not worth changing."""
 CYCLING_STEPS = 5
 """Steps without a new low in set changes after which an attempt that only places the set (the
 symmetric-part start) ends: its set cycles. Ablation row "cycling stop": no effect with the coarse
