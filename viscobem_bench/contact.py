@@ -30,6 +30,7 @@ and a sinusoid near full contact on ``E_inf/E0 = 1e4``. ``--quick`` keeps the sm
 import argparse
 import contextlib
 import dataclasses
+import functools
 import importlib
 import sys
 import time
@@ -37,7 +38,7 @@ import time
 import numpy as np
 
 import bem
-from bem.contact import ContactOptions
+from bem.contact import ContactOptions, krylov
 from viscobem_bench.instruments import load_average
 from viscobem_bench.periodic.report import finish, table
 
@@ -89,7 +90,35 @@ MECHANISMS = [
     ("lines maxiter share", "the line attempt may take half of maxiter", {}, {"solver:LINES_MAXITER_SHARE": 1.0}),
     ("long GMRES restarts", "restart length up to RESTART_MAX by memory (off: 30)", {}, {"krylov:RESTART_MAX": 30}),
     ("gap floor", "the gap scale is held above GAP_FLOOR_SHARE of the heights", {}, {"newton:GAP_FLOOR_SHARE": 0.0}),
-    ("round-off floor stop", "stop at the residual's round-off floor", {}, {"newton:FLOOR_STALLS": 10**9}),
+    ("round-off floor stop", "stop at the residual's round-off floor", {}, {"newton:FLOOR_MARGIN": 0.0}),
+    (
+        "reorthogonalisation",
+        "GMRES's second Gram-Schmidt pass on cancellation (off: one pass)",
+        {},
+        {"krylov:gmres": functools.partial(krylov.gmres, reorthogonalise=0.0)},
+    ),
+    (
+        "loose starts",
+        "the coarse solve and symmetric start stop at START_RTOL (off: rtol)",
+        {},
+        {"start:START_RTOL": 0.0},
+    ),
+    ("twelve halvings", "line search down to 1/2**12 (off: 1/2**4)", {}, {"newton:SEARCH_HALVINGS": 4}),
+    ("gap scale 10", "GAP_SCALE cells in the residual's gap scale (off: 1)", {}, {"newton:GAP_SCALE": 1.0}),
+    (
+        "large-grid-only coarse start",
+        "non-strong operators coarsen from 2**18 points (off: from 128, as strong ones)",
+        {},
+        {"start:COARSEN_MIN_SIZE": 128},
+    ),
+    ("restart floor", "at least RESTART_MIN GMRES vectors (off: 1)", {}, {"krylov:RESTART_MIN": 1}),
+    ("settling changes", "a set is settling at <= 100 changes (off: 10)", {}, {"forcing:SETTLING_CHANGES": 10}),
+    (
+        "cycling steps",
+        "five steps without a new low end the symmetric start (off: two)",
+        {},
+        {"newton:CYCLING_STEPS": 2},
+    ),
 ]
 
 

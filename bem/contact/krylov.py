@@ -18,11 +18,16 @@ import numpy as np
 
 TWICE_IS_ENOUGH = 1 / np.sqrt(2)
 """A second Gram–Schmidt pass is made when the first kept less than this share of the vector's
-norm (Kahan–Parlett, "twice is enough"): otherwise one pass is orthogonal to working accuracy."""
+norm (Kahan–Parlett, "twice is enough"): otherwise one pass is orthogonal to working accuracy.
+Ablation row "reorthogonalisation": no product on the case set, but with one pass GMRES on
+nearly dependent Krylov vectors stops at a true residual of ~3e-4
+(``tests/bem/contact/test_krylov.py``)."""
 RESTART_MIN = 30
-"""Fewest GMRES basis vectors, whatever the memory budget: shorter restarts stall."""
+"""Fewest GMRES basis vectors, whatever the memory budget: shorter restarts stall. Ablation row
+"restart floor": it never binds on the case set (the budget gives more below 2.2 M unknowns)."""
 RESTART_MAX = 200
-"""Most GMRES basis vectors: orthogonalisation (~4 j n flops at step j) outgrows the products. Ablation row "long GMRES restarts" (RESTART_MAX at this value): 2.0x the products, 5x on one case. Ablation row "long GMRES restarts"."""
+"""Most GMRES basis vectors: orthogonalisation (~4 j n flops at step j) outgrows the products.
+Ablation row "long GMRES restarts" (30 instead): 2.0x the products, 5x on one case."""
 
 
 def restart_length(n, *, budget):

@@ -33,7 +33,8 @@ CHUNK = 32
 """x-lines per batched dense inverse: large enough for BLAS to pay, small enough to pad little."""
 DTYPE = np.float32
 """Storage of the line inverses: the line systems are well conditioned, so float32 changes the
-preconditioner by ~1e-7 relative, far below the inner tolerance, and halves its traffic. A parameter of the line preconditioner (ablation row "line preconditioner": off costs 2.5x the products and breaks the 10 rtol pressure bound on one case (55 rtol)). Ablation row "line preconditioner"."""
+preconditioner by ~1e-7 relative, far below the inner tolerance, and halves its traffic (the
+preconditioner it stores: ablation row "line preconditioner", off 2.5x the products and 55 rtol)."""
 
 _POOL = None  # ((pid, workers), executor): see _run
 

@@ -19,9 +19,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from . import forcing as fc
-from .inner import FINAL_ATOL_SHARE, InnerSolver, Problem
+from .inner import InnerSolver, Problem
 from .operator import ExactInverse, strongly_nonsymmetric
-from .start import first_iterate, wants_symmetric_start
+from .start import START_RTOL, first_iterate, wants_symmetric_start
 
 __all__ = ["Attempt", "ContactSolution", "attempt_solve", "complementarity_residual", "line_search", "roundoff_floor"]
 
@@ -29,34 +29,45 @@ log = logging.getLogger(__name__)
 
 GAP_SCALE = 10.0
 """The residual's gap scale in one cell's displacement under the mean pressure: larger is cheaper;
-10 keeps the pressure error under 4 rtol on the tested cases (``tests/bem/test_rtol_meaning.py``)."""
+10 keeps the pressure error under 4 rtol on the tested cases (``tests/bem/test_rtol_meaning.py``).
+Part of the stopping test; ablation row "gap scale 10" (1 instead): 1.004x the products."""
 GAP_SCALE_STRONG = 0.3
-"""The same for strongly non-symmetric operators, whose pressure error per gap error is larger."""
+"""The same for strongly non-symmetric operators, whose pressure error per gap error is larger.
+Ablation row "strong gap scale" (``GAP_SCALE`` for all): 0.99x the products, but the pressure
+error reaches 92 rtol."""
 GAP_FLOOR_SHARE = 1e-4
 """Smallest gap scale as a share of the height range: below it round-off of the gap would stop
 tight solves (ablation row "gap floor": no product on the set, but the 4096-point profile of
 ``tests/bem/contact/test_roundoff.py`` reaches rtol 1e-11 only with it)."""
 SEARCH_HALVINGS = 12
-"""Step lengths 1/2 ... 1/2**12 tried by the line search: they cost no product; 1/4096 is short enough."""
+"""Step lengths 1/2 ... 1/2**12 tried by the line search: they cost no product. Ablation row
+"twelve halvings" (4 instead): 0.70x the products on the case set (the sinusoid near full contact
+4738 against 9776), no case lost, but 0.999x on the six 512² friction curves of ``viscobem bench
+curve``, where the cost is (``docs/theory.md`` §4.2): not worth changing."""
 CYCLING_STEPS = 5
 """Steps without a new low in set changes after which an attempt that only places the set (the
-symmetric-part start) ends: its set cycles."""
+symmetric-part start) ends: its set cycles. Ablation row "cycling stop": no effect with the coarse
+start on; without it (``coarsen=False``) the symmetric-part start of a 512² rubber cycles
+(``tests/bem/contact/test_krylov.py``); row "cycling steps" (2 instead): 1.34x the products and the
+sinusoid near full contact lost."""
 NESTED_ETA = 0.01
 """Forcing term of symmetric problems started from the coarser grid, whose set is nearly right:
 Newton's local convergence needs the tighter solves, and looser ones flip points at the margin
-of broad-band contacts."""
-SYMMETRIC_START_RTOL = 1e-3
-"""Residual of the symmetric-part start: it only has to place the set."""
+of broad-band contacts. Ablation row "nested eta": no case of the quick set takes this path; the
+1024² elastic broad-band case of the full set takes 216 products with it, 237 without."""
 PRECONDITION_MIN_SIZE = 2**17
 """Grid points from which the exact full-contact inverse pays its extra FFT pair as a
-preconditioner: smaller restricted systems are well conditioned."""
+preconditioner: smaller restricted systems are well conditioned. Ablation row "large-grid exact
+preconditioner": no quick case is this large; at 512² the preconditioned solve takes fewer
+products in the same run (``tests/bem/contact/test_krylov.py``)."""
 FLOOR_MARGIN = 30.0
 """A residual within this factor of its round-off floor (:func:`roundoff_floor`) that stops
 falling on a settled set is at the floor: the floor is an estimate of the precision of the
-gap and pressure, and the stalled residual measured a few times to tens of times above it."""
-FLOOR_STALLS = 2
-"""Steps at the floor without a new low after which the attempt stops (one may be a late inner
-solve's gain). Ablation row "strong gap scale": with GAP_SCALE for all, the products fall by 1 % and the pressure error reaches 92 rtol. Ablation row "cycling stop": no effect with the coarse start on; without it (``coarsen=False``) the symmetric-part start of a 512² rubber cycles (``tests/bem/contact/test_krylov.py``). Ablation: no case of the quick set takes this path; the 1024² elastic broad-band case of the full set takes 216 products with it, 237 without. Ablation row "symmetric-part start": off costs 1.30x the products and loses a case. Ablation row "large-grid exact preconditioner": no quick case is this large; at 512² the preconditioned solve takes fewer products in the same run (``tests/bem/contact/test_krylov.py``). Ablation row "round-off floor stop": no product on the set (no case asks below its floor); without it a solve asked for too much crawls to ``maxiter`` (``tests/bem/contact/test_roundoff.py``). Ablation row "round-off floor stop"."""
+gap and pressure, and the stalled residual measured a few times to tens of times above it.
+Ablation row "round-off floor stop": no product on the set (no case asks below its floor);
+without it a solve asked for too much crawls to ``maxiter`` (``tests/bem/contact/test_roundoff.py``).
+The first settled step at the floor without a new low stops the attempt: row "floor stalls" (one
+such step instead of two) costs no product on the set."""
 
 
 @dataclass(frozen=True)
@@ -133,19 +144,17 @@ class SetTrack:
 
 @dataclass(frozen=True)
 class ResidualTrack:
-    """The lowest residual and the steps since; steps at the floor."""
+    """The lowest residual and the steps since; whether the last step stalled at the floor."""
 
     lowest: float
     since_lowest: int = 0
-    at_floor: int = 0
+    at_floor: bool = False
 
     def after(self, residual, *, unchanged, floor):
         lower = residual < self.lowest
         stuck = unchanged and not lower and residual <= FLOOR_MARGIN * floor
         return ResidualTrack(
-            lowest=min(self.lowest, residual),
-            since_lowest=0 if lower else self.since_lowest + 1,
-            at_floor=self.at_floor + 1 if stuck else 0,
+            lowest=min(self.lowest, residual), since_lowest=0 if lower else self.since_lowest + 1, at_floor=stuck
         )
 
 
@@ -216,7 +225,7 @@ def problem_scales(op, heights, mean_pressure, approach, rtol, *, strong, p_mean
         p_ref=p_ref,
         h_ref=h_ref,
         c=1.0 / a0,
-        final_atol=FINAL_ATOL_SHARE * rtol * h_ref,
+        final_atol=rtol * h_ref,
     )
 
 
@@ -242,7 +251,7 @@ class _Run:
 
     def go_on(self, it, outer, sets, residuals):
         a = self.attempt
-        if not it.residual > self.rtol or outer >= a.maxiter or residuals.at_floor >= FLOOR_STALLS:
+        if not it.residual > self.rtol or outer >= a.maxiter or residuals.at_floor:
             return False
         if a.stop_when_cycling and sets.stalled >= CYCLING_STEPS:
             return False
@@ -299,7 +308,7 @@ def _solution(run, it, outer, residuals):
         f"{outer} active-set iterations ({run.inner.matvecs} operator products)"
     )
     attainable = None
-    if not success and residuals.at_floor >= FLOOR_STALLS:
+    if not success and residuals.at_floor:
         # at the floor the residual is round-off: another path (another processor's rounding)
         # settles up to a floor higher, so what a solve can count on is the lowest plus the floor
         floor = roundoff_floor(pb, it)
@@ -331,7 +340,7 @@ def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, option
             heights,
             mean_pressure=mean_pressure,
             approach=approach,
-            rtol=max(rtol, SYMMETRIC_START_RTOL),
+            rtol=max(rtol, START_RTOL),
             attempt=sym,
             options=options,
         )

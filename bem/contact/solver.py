@@ -50,7 +50,7 @@ from ..parallel import blas_limit
 from .newton import Attempt, ContactSolution, attempt_solve, complementarity_residual
 from .operator import LineFactors, strongly_nonsymmetric
 from .options import MAXITER, RTOL, ContactOptions
-from .start import COARSE_RTOL, coarse_start, nearer, wants_coarse_start
+from .start import START_RTOL, coarse_start, nearer, wants_coarse_start
 
 __all__ = ["ContactOptions", "ContactSolution", "complementarity_residual", "solve_contact"]
 
@@ -59,10 +59,12 @@ DEFAULT_OPTIONS = ContactOptions()
 
 LINES_MAXITER_SHARE = 0.5
 """Share of ``maxiter`` the line-preconditioned attempt may take, leaving the rest to the
-unpreconditioned one."""
+unpreconditioned one. Ablation row "lines maxiter share": no effect on the set; it keeps steps for
+the second attempt (``tests/bem/test_robustness.py``)."""
 LINES_RESIDUAL_STALL = 30
 """Steps without a new low in the residual that end the line-preconditioned attempt (it cycles
-on some near-full contacts). Ablation row "lines maxiter share": no effect on the set; it keeps steps for the second attempt (``tests/bem/test_robustness.py``). Ablation row "lines stall stop": no effect on the quick set; off costs 1.29x the products on the path-sensitive 32² case (§4.2)."""
+on some near-full contacts). Ablation row "lines stall stop": no effect on the quick set; off
+costs 1.29x the products on the path-sensitive 32² case (``docs/theory.md`` §4.2)."""
 
 
 def solve_contact(
@@ -139,7 +141,7 @@ def solve_contact(
 
 def _coarse(op, heights, maxiter, initial, problem):
     """:func:`~bem.contact.start.coarse_start`: the same problem on the coarser grid, from the warm
-    start sampled there, to the coarse tolerance."""
+    start sampled there, to the start's tolerance."""
     warm = None if initial is None else op.restrict(np.asarray(initial, dtype=float))
 
     def solve_coarse(coarse_op, coarse_heights):
@@ -148,7 +150,7 @@ def _coarse(op, heights, maxiter, initial, problem):
             coarse_heights,
             mean_pressure=problem["mean_pressure"],
             approach=problem["approach"],
-            rtol=max(problem["rtol"], COARSE_RTOL),
+            rtol=max(problem["rtol"], START_RTOL),
             maxiter=maxiter,
             initial=warm,
             raise_on_failure=False,

@@ -37,8 +37,8 @@ from .operator import Coarsening, ExactInverse, OwnStart, strongly_nonsymmetric
 __all__ = [
     "COARSEN_MIN_SIZE",
     "COARSEN_MIN_SIZE_STRONG",
-    "COARSE_RTOL",
     "NEAR_FULL_CONTACT",
+    "START_RTOL",
     "coarse_start",
     "first_iterate",
     "nearer",
@@ -50,14 +50,24 @@ log = logging.getLogger(__name__)
 
 COARSEN_MIN_SIZE = 2**18
 """Grid points from which the coarse start pays for operators that are not strongly
-non-symmetric: below it their first set is cheap to find anyway."""
+non-symmetric: below it their first set is cheap to find anyway. Ablation row "coarse start":
+off costs 1.19x the products (1.26x the geometric mean of the cases); row "large-grid-only coarse
+start" (from 128 points instead): 1.002x the products."""
 COARSEN_MIN_SIZE_STRONG = 128
 """The same for strongly non-symmetric operators, whose contact edges move a cell per step on
-any grid (module docstring); below it the coarse problem no longer resembles the fine one."""
-COARSE_RTOL = 1e-4
-"""Residual of the coarse solve (at least the caller's rtol): interpolation error dominates anyway."""
+any grid (module docstring); below it the coarse problem no longer resembles the fine one.
+Ablation row "strong coarse start": off costs 1.19x the products."""
+START_RTOL = 1e-3
+"""Residual at which a start stops, the coarse solve and the symmetric-part start alike (at
+least the caller's rtol): it only has to place the set. Ablation row "coarse solve at 1e-3":
+0.998x the products against 1e-4 on the coarse solve; rows "loose coarse solve" and "loose
+symmetric start" (the caller's rtol instead): 1.005x the products each on the case set, but a
+solve asked for less than its round-off floor then asks its starts for it too and crawls (1716
+products against at most 669, ``tests/bem/contact/test_roundoff.py``)."""
 NEAR_FULL_CONTACT = 0.1
-"""Tension share under which the clipped full-contact pressure is the start (it is nearly the answer). Ablation row "coarse start": off costs 1.19x the products (1.26x the geometric mean of the cases). Ablation row "strong coarse start": off costs 1.19x the products. Ablation row "coarse start". Ablation row "near-full start": off costs 7.7x the products and breaks the 10 rtol pressure bound (39 rtol)."""
+"""Tension share under which the clipped full-contact pressure is the start (it is nearly the
+answer). Ablation row "near-full start": off costs 7.7x the products and breaks the 10 rtol
+pressure bound (39 rtol)."""
 
 
 def full_contact_pressure(op, ht, mean_pressure):

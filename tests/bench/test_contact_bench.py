@@ -6,17 +6,17 @@ import json
 
 import pytest
 
-from bem.contact import newton, solver, start
+from bem.contact import forcing, inner, newton
 from viscobem_bench import contact as bench
 from viscobem_cli.main import main
 
 
 def test_the_switch_patches_every_copy_and_restores_it():
-    coarse_rtol, gap = start.COARSE_RTOL, newton.GAP_SCALE_STRONG
-    with bench.switched_off({"start:COARSE_RTOL": 0.5, "newton:GAP_SCALE_STRONG": 10.0}):
-        assert start.COARSE_RTOL == solver.COARSE_RTOL == 0.5  # solver imported it by name
+    tighten, gap = forcing.TIGHTEN, newton.GAP_SCALE_STRONG
+    with bench.switched_off({"forcing:TIGHTEN": 0.5, "newton:GAP_SCALE_STRONG": 10.0}):
+        assert forcing.TIGHTEN == inner.TIGHTEN == 0.5  # inner imported it by name
         assert newton.GAP_SCALE_STRONG == 10.0
-    assert start.COARSE_RTOL == solver.COARSE_RTOL == coarse_rtol and newton.GAP_SCALE_STRONG == gap
+    assert forcing.TIGHTEN == inner.TIGHTEN == tighten and newton.GAP_SCALE_STRONG == gap
 
 
 def test_the_switch_restores_after_an_error():

@@ -104,6 +104,9 @@ def _tamaas_rows(runs):
     return headers, rows
 
 
+PRODUCTS_1024, PRODUCTS_1024_GOAL = 60, 50  # operator products of the elastic 1024² solve: target, goal
+
+
 def targets(cases, tamaas_runs):
     by = {(c["n"], c["case"]): c for c in cases}
     tam = {t["n"]: t for t in tamaas_runs}
@@ -133,6 +136,14 @@ def targets(cases, tamaas_runs):
         "matvecs = operator applications; FFT pair = "
         "scipy irfftn(rfftn); against our own product time the ratio is "
         + ("n/a" if not ours else f"{ours['product_ratio']:.2f}"),
+    )
+    products = ours["matvecs"] if ours else None
+    add(
+        "elastic n=1024: operator products",
+        products,
+        f"<= {PRODUCTS_1024}",
+        None if products is None else products <= PRODUCTS_1024,
+        f"self-affine, ~10 % contact, rtol 1e-8; goal {PRODUCTS_1024_GOAL}",
     )
     for case in ("seed", "rubber20"):
         for n in sorted({c["n"] for c in cases}):
