@@ -44,6 +44,12 @@ SEARCH_HALVINGS = 12
 "twelve halvings" (4 instead): 0.70x the products on the case set (the sinusoid near full contact
 4738 against 9776), no case lost, but 0.999x on the six 512² friction curves of ``viscobem bench
 curve``, where the cost is (``docs/theory.md`` §4.2): not worth changing."""
+ASCENTS = 3
+"""Rising residuals in a row after which a symmetric problem is damped by the line search: its
+plain Newton steps are cycling. No case of the ablation's quick set needs it; the elastic
+Westergaard profile does from n = 4096 up (``tests/bem/test_westergaard.py``, slow): without it
+8192 points take 73 active-set steps (32 with it) and 16384 cycle for 400 steps at residual 12
+(31 steps with it)."""
 CYCLING_STEPS = 5
 """Steps without a new low in set changes after which an attempt that only places the set (the
 symmetric-part start) ends: its set cycles. Ablation row "cycling stop": no effect with the coarse
@@ -149,12 +155,16 @@ class ResidualTrack:
     lowest: float
     since_lowest: int = 0
     at_floor: bool = False
+    ascents: int = 0
 
-    def after(self, residual, *, unchanged, floor):
+    def after(self, previous, residual, *, unchanged, floor):
         lower = residual < self.lowest
         stuck = unchanged and not lower and residual <= FLOOR_MARGIN * floor
         return ResidualTrack(
-            lowest=min(self.lowest, residual), since_lowest=0 if lower else self.since_lowest + 1, at_floor=stuck
+            lowest=min(self.lowest, residual),
+            since_lowest=0 if lower else self.since_lowest + 1,
+            at_floor=stuck,
+            ascents=self.ascents + 1 if residual > previous else 0,
         )
 
 
@@ -242,10 +252,11 @@ class _Run:
         g = u - pb.ht - d
         return Iterate(p, u, g, d, contact, complementarity_residual(p, g, pb.p_ref, pb.h_ref)), tighten
 
-    def step_length(self, it, new, changed):
+    def step_length(self, it, new, changed, damped):
         """Non-symmetric problems are damped by the line search; symmetric ones take the Newton
-        point, and so does an unchanged set (the same system solved more accurately)."""
-        if not changed or self.op.is_symmetric:
+        point until their residual rises :data:`ASCENTS` times in a row, and so does an unchanged
+        set (the same system solved more accurately)."""
+        if not (changed and damped):
             return 1.0
         return line_search(it.p, it.g, new.p, new.g, self.pb.c, full=True)
 
@@ -265,6 +276,7 @@ def _iterate(run, it):
     eta = a.eta
     sets, residuals = SetTrack(), ResidualTrack(it.residual)
     tighten, outer = 1.0, 1
+    damped = not run.op.is_symmetric
     while run.go_on(it, outer, sets, residuals):
         outer += 1
         contact = np.greater(it.p, run.pb.c * it.g)  # p - c g > 0
@@ -273,11 +285,12 @@ def _iterate(run, it):
         sets, changed = sets.after(it.contact, contact)
         # inexact Newton: loose inner solves while the set changes, tight once it has settled
         new, tighten = run.point(contact, it, eta if changed else 0.0, tighten)
-        t = run.step_length(it, new, changed)
+        t = run.step_length(it, new, changed, damped)
         if not a.own_forcing:
             eta = fc.next_eta(eta, damped=t < 1.0, settled=fc.settled(changed))
-        it = it.toward(new, t, run.pb)
-        residuals = residuals.after(it.residual, unchanged=not changed, floor=roundoff_floor(run.pb, it))
+        previous, it = it.residual, it.toward(new, t, run.pb)
+        residuals = residuals.after(previous, it.residual, unchanged=not changed, floor=roundoff_floor(run.pb, it))
+        damped = damped or residuals.ascents >= ASCENTS
         _log_step(outer, changed, t, it, run.inner.matvecs)
     return it, outer, residuals
 
