@@ -34,9 +34,10 @@ def test_links_in_included_files_resolve_from_the_page_that_includes_them():
     pairs = list(_included())
     assert any(inc.name == "CHANGELOG.md" for _, inc in pairs), "the changelog page no longer includes CHANGELOG.md"
     for page, included in pairs:
-        assert not _broken(page, included), (
+        broken = _broken(page, included)
+        assert not broken, (
             f"{included.name} is included by {page.relative_to(ROOT)}; these links do not resolve from "
-            f"{page.parent.relative_to(ROOT)}/: {_broken(page, included)}"
+            f"{page.parent.relative_to(ROOT)}/: {broken}"
         )
 
 
