@@ -35,6 +35,7 @@ import numpy as np
 
 from ..checks import check_positive, show
 from ..errors import InputError
+from ..plausibility import MAX_KELVIN
 
 __all__ = [
     "WLF",
@@ -55,9 +56,11 @@ WLF_MARGIN = 10.0  # K above the WLF pole T_ref - C2 where the law is still beli
 
 
 def check_kelvin(name, T):
-    """``T`` as a float (or float array) of absolute temperatures >= 100 K, else InputError.
+    """``T`` as a float (or float array) of absolute temperatures from 100 K to
+    :data:`bem.plausibility.MAX_KELVIN`, else InputError.
 
-    A value below 100 K (or <= 0) is named as looking like degrees Celsius.
+    A value below 100 K (or <= 0) is named as looking like degrees Celsius; one above the
+    largest is no polymer's (a column of moduli or frequencies read as temperatures).
     """
     try:
         t = np.asarray(T, dtype=float)
@@ -70,6 +73,12 @@ def check_kelvin(name, T):
         raise InputError(
             f"{name} must be an absolute temperature >= {MIN_KELVIN:g} K, got {low:g}: that looks like "
             f"degrees Celsius (use {low + 273.15:g} K)"
+        )
+    if np.any(t > MAX_KELVIN):
+        hint = "is a column of moduli or frequencies read as temperatures?" if t.ndim else "temperatures are in K"
+        raise InputError(
+            f"{name} must be an absolute temperature <= {MAX_KELVIN:g} K (polymers decompose below it), got "
+            f"{float(t.max()):g} K: {hint}"
         )
     return float(t) if t.ndim == 0 else t
 

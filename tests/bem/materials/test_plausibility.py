@@ -39,7 +39,7 @@ def test_a_fit_to_a_table_in_mpa_read_as_pa_is_refused():
 def test_temperatures_far_from_the_law_warn_and_impossible_ones_are_refused():
     m = bem.Material.standard_linear_solid(E0=1e6, E_inf=1e9, relaxation_time=1e-3)
     wlf = WLF(17.4, 51.6, 300.0)
-    with pytest.raises(InputError, match=r"T must be at most 1000 K .* got 1000000.0 K"):
+    with pytest.raises(InputError, match=r"T .* must be an absolute temperature <= 1000 K .* got 1e\+06 K"):
         m.at_temperature(1e6, wlf)
     assert not m.at_temperature(330.0, wlf).warnings
     far = m.at_temperature(450.0, wlf).warnings
@@ -58,3 +58,13 @@ def test_a_fitted_material_warns_outside_its_data_temperatures():
     assert not [x for x in mat.at_temperature(330.0, law).warnings if "fitted to" in x]
     warned = mat.at_temperature(370.0, law).warnings
     assert any("outside the temperatures the material was fitted to (280 to 320 K)" in x for x in warned)
+
+
+def test_data_temperatures_no_polymer_has_are_refused():
+    # moduli passed where the temperatures go (the argument order is frequencies, temperatures,
+    # storage, loss): before this check the fit ran and blamed superposition
+    w = np.tile(np.logspace(-1, 2, 8), 3)
+    temps = np.repeat([263.15, 293.15, 323.15], 8)
+    e = bem.Material.from_prony(E0=3e6, moduli=[3e7, 2e8], times=[1e-3, 1e-5]).complex_modulus(w)
+    with pytest.raises(InputError, match=r"temperatures must be an absolute temperature <= 1000 K .* moduli"):
+        bem.Material.fit_master_curve(w, e.real, temps, e.imag, reference_temperature=293.15)
