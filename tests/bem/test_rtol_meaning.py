@@ -27,10 +27,11 @@ isolated sphere 64²       0.30       0.22        3.4
  ... rolling              0.38       0.47        22
 ========================  =========  ==========  ==================================
 
-Strongly non-symmetric operators can have a larger pressure error per gap error, and use
-``GAP_SCALE_STRONG`` = 0.3 (held at 1e-4 of the height range: ``GAP_FLOOR_SHARE``; constants of
-:mod:`bem.contact.newton`). On the isolated rolling cylinder with ``E_inf/E0 = 100`` (4096
-cells), whose inner solves are preconditioned, both gap scales meet the bound.
+The gap scale is ``GAP_SCALE`` = 0.3 cells for every operator (held at 1e-4 of the height range:
+``GAP_FLOOR_SHARE``; constants of :mod:`bem.contact.newton`), set by strongly non-symmetric
+operators, which can have the larger pressure error per gap error. On the isolated rolling
+cylinder with ``E_inf/E0 = 100`` (4096 cells), whose inner solves are preconditioned, 10 cells
+would meet the bound too.
 """
 
 import numpy as np
@@ -135,10 +136,11 @@ def test_gap_scale_is_what_bounds_it(monkeypatch):
 
 
 def test_strongly_nonsymmetric_isolated_meets_the_bound(monkeypatch):
-    """The strongly non-symmetric rolling cylinder meets the bound with its own gap scale
-    (``GAP_SCALE_STRONG``), and, its inner solves preconditioned by the padded cell's inverse,
-    with the symmetric operators' gap scale too (measured 1.4 x rtol)."""
+    """The strongly non-symmetric rolling cylinder meets the bound with ``GAP_SCALE``, and, its
+    inner solves preconditioned by the padded cell's inverse, with a gap scale of 10 cells too
+    (measured 1.4 x rtol); the periodic strongly non-symmetric cases of ``viscobem bench contact``
+    do not (ablation row "gap scale 0.3 vs 10")."""
     s, a = _cylinder(SLS100, 1000.0, 4096, 4.0)
     kw = {"speed": 0.3 * a / 0.01, "load": 1000.0, "periodic": False, "method": "uniform"}
     assert _ratio(s, SLS100, kw, 1e-6) <= 10.0
-    assert _ratio(s, SLS100, kw, 1e-6, monkeypatch, GAP_SCALE_STRONG=10.0) <= 10.0
+    assert _ratio(s, SLS100, kw, 1e-6, monkeypatch, GAP_SCALE=10.0) <= 10.0
