@@ -20,7 +20,7 @@ import numpy as np
 
 from . import forcing as fc
 from .inner import InnerSolver, Problem
-from .operator import ApproximateInverse, ExactInverse, strongly_nonsymmetric
+from .operator import ExactInverse, strongly_nonsymmetric
 from .start import first_iterate, start_rtol, wants_symmetric_start
 
 __all__ = ["Attempt", "ContactSolution", "attempt_solve", "complementarity_residual", "line_search", "roundoff_floor"]
@@ -44,6 +44,12 @@ SEARCH_HALVINGS = 12
 "twelve halvings" (4 instead): 0.71x the products on the case set (the sinusoid near full contact
 4767 against 9832, the 1-D rubber curve 1303 against 1735), no case lost, but 0.999x on the six
 512² friction curves of ``viscobem bench curve``, where the cost is (``docs/theory.md`` §4.2)."""
+PRECONDITION_MIN_SIZE = 2**17
+"""Grid points from which the exact full-contact inverse pays its extra FFT pair as a
+preconditioner: smaller restricted systems are well conditioned. Below it the preconditioner is
+also a hazard: applied in single precision to approach-controlled solves at rtol 1e-12 on 32²
+cells (tests/bem/test_solver.py, slow), its GMRES correction overflowed float32. Ablation row
+"large-grid exact preconditioner": 1.017x products on the quick set without the size limit."""
 CYCLING_STEPS = 3
 """Steps in a row that show an iteration cycling. A symmetric problem whose residual rises this
 many times in a row is damped by the line search from then on: its plain Newton steps cycle. An
@@ -92,13 +98,15 @@ class Attempt:
     """How one attempt iterates. ``precondition``: None (by grid size and phase), True,
     False or ``"lines"``; ``own_forcing``: keep ``eta`` whatever the steps do (the
     line-preconditioned attempt); ``stop_when_cycling``: only place the set, and stop once its
-    changes stall."""
+    changes stall; ``residual_stall``: stop once the residual has had no new low for this many
+    steps."""
 
     maxiter: int
     eta: float
     precondition: object = None
     own_forcing: bool = False
     stop_when_cycling: bool = False
+    residual_stall: int | None = None
 
 
 @dataclass(frozen=True)
@@ -139,9 +147,11 @@ class SetTrack:
 
 @dataclass(frozen=True)
 class ResidualTrack:
-    """The lowest residual; whether the last step stalled at the floor; rises in a row."""
+    """The lowest residual and the steps since; whether the last step stalled at the floor; rises
+    in a row."""
 
     lowest: float
+    since_lowest: int = 0
     at_floor: bool = False
     ascents: int = 0
 
@@ -149,7 +159,10 @@ class ResidualTrack:
         lower = residual < self.lowest
         stuck = unchanged and not lower and residual <= FLOOR_MARGIN * floor
         return ResidualTrack(
-            lowest=min(self.lowest, residual), at_floor=stuck, ascents=self.ascents + 1 if residual > previous else 0
+            lowest=min(self.lowest, residual),
+            since_lowest=0 if lower else self.since_lowest + 1,
+            at_floor=stuck,
+            ascents=self.ascents + 1 if residual > previous else 0,
         )
 
 
@@ -248,7 +261,9 @@ class _Run:
         a = self.attempt
         if not it.residual > self.rtol or outer >= a.maxiter or residuals.at_floor:
             return False
-        return not (a.stop_when_cycling and sets.stalled >= CYCLING_STEPS)
+        if a.stop_when_cycling and sets.stalled >= CYCLING_STEPS:
+            return False
+        return a.residual_stall is None or residuals.since_lowest < a.residual_stall
 
 
 def _iterate(run, it):
@@ -367,5 +382,6 @@ def _preconditioner(op, pb, attempt, options, strong):
     inverse does not remove their non-normality."""
     choice = attempt.precondition if attempt.precondition is not None else options.precondition
     if choice is None:
-        choice = isinstance(op, ApproximateInverse) and not (isinstance(op, ExactInverse) and strong)
+        approximate_only = not isinstance(op, ExactInverse)
+        choice = approximate_only or (pb.ht.size >= PRECONDITION_MIN_SIZE and not strong)
     return choice

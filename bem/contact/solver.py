@@ -58,9 +58,14 @@ DEFAULT_OPTIONS = ContactOptions()
 
 LINES_MAXITER_SHARE = 0.5
 """Share of ``maxiter`` the line-preconditioned attempt may take, leaving the rest to the
-unpreconditioned one: it ends a line attempt that creeps or cycles. Ablation row "lines maxiter
-share": no effect on the case set; it keeps steps for the second attempt
-(``tests/bem/test_robustness.py``, where the line attempt creeps for 88 to 200 steps)."""
+unpreconditioned one: it ends a line attempt that creeps. Ablation row "lines maxiter share": no
+effect on the case set; it keeps steps for the second attempt (``tests/bem/test_robustness.py``)."""
+LINES_RESIDUAL_STALL = 30
+"""Steps without a new low in the residual that end the line-preconditioned attempt (it cycles
+on some near-full contacts and creeps on stiff ones). Measured: no effect on the quick ablation
+set; without it the path-sensitive 32² case takes 1.075x the products, and the 128² cell at
+E_inf/E0 = 1e4 of ``tests/bem/test_robustness.py`` spends 200 line steps instead of 44 before the
+unpreconditioned attempt (``docs/theory.md`` §4.2)."""
 
 
 def solve_contact(
@@ -158,12 +163,17 @@ def _coarse(op, heights, maxiter, initial, problem):
 
 def _retry_policy(op, heights, maxiter, problem):
     """One attempt; strongly non-symmetric operators on 2-D periodic grids first try the line
-    preconditioner, and give up on it once its share of ``maxiter`` is spent."""
+    preconditioner, and give up on it once its residual stalls or its share of ``maxiter`` is
+    spent."""
     o = problem["options"]
     lines = o.precondition is None and o.line_budget > 0 and isinstance(op, LineFactors) and op.factors_along_x
     if lines and strongly_nonsymmetric(op):
         lines = Attempt(
-            maxiter=max(1, int(LINES_MAXITER_SHARE * maxiter)), eta=o.inner_eta, precondition="lines", own_forcing=True
+            maxiter=max(1, int(LINES_MAXITER_SHARE * maxiter)),
+            eta=o.inner_eta,
+            precondition="lines",
+            own_forcing=True,
+            residual_stall=LINES_RESIDUAL_STALL,
         )
         first = attempt_solve(op, heights, attempt=lines, **problem)
         if first.success or first.attainable is not None or maxiter < 2:
