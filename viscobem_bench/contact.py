@@ -38,7 +38,8 @@ import time
 import numpy as np
 
 import bem
-from bem.contact import ContactOptions, krylov
+from bem.contact import ContactOptions, krylov, line_preconditioner
+from bem.contact.operator import ExactInverse, strongly_nonsymmetric
 from viscobem_bench.instruments import load_average
 from viscobem_bench.periodic.report import finish, table
 
@@ -52,6 +53,50 @@ PAYS = 0.05  # a mechanism pays when switching it off costs more than this share
 # (name, what it does, option overrides, module patches {"module:NAME": value})
 def _never(*args, **kw):
     return False
+
+
+def _eta_min_at_once(eta, *, damped, settled):
+    from bem.contact import forcing
+
+    return forcing.ETA_MIN if damped and settled else eta
+
+
+def _own_rtol(rtol):
+    return rtol
+
+
+def _start_rtol_1e_3(rtol):
+    return max(rtol, 1e-3)
+
+
+def _eta_kept(eta, *, damped, settled):
+    return eta
+
+
+def _always(*args, **kw):
+    return True
+
+
+def _default_choice(attempt, options):
+    return attempt.precondition if attempt.precondition is not None else options.precondition
+
+
+def _no_exact(op, pb, attempt, options, strong):
+    choice = _default_choice(attempt, options)
+    return not isinstance(op, ExactInverse) if choice is None else choice
+
+
+def _exact_from_2_17(op, pb, attempt, options, strong):
+    choice = _default_choice(attempt, options)
+    exact = pb.ht.size >= 2**17 and not strong
+    return (not isinstance(op, ExactInverse) or exact) if choice is None else choice
+
+
+def _coarse_large_unless_strong(op, heights, mean_pressure, options):
+    from bem.contact import start
+
+    wanted = start.wants_coarse_start(op, heights, mean_pressure, options)
+    return wanted and (heights.size >= 2**18 or strongly_nonsymmetric(op))
 
 
 MECHANISMS = [
@@ -68,28 +113,59 @@ MECHANISMS = [
     ("preconditioners", "every preconditioner (isolated: padded inverse; lines)", {"precondition": False}, {}),
     ("float32 inner solves", "loose inner products in single precision", {"single_precision": False}, {}),
     ("inexact Newton", "inner solves stop at eta of their rhs (off: eta 1e-6)", {"inner_eta": 1e-6}, {}),
-    ("damped-settled tighten", "a damped step on a settled set tightens eta", {}, {"forcing:settled": _never}),
-    ("nested eta", "symmetric problems from the coarse grid start at NESTED_ETA", {}, {"newton:NESTED_ETA": 1.0}),
-    ("cycling stop", "the symmetric-part start ends once its set cycles", {}, {"newton:CYCLING_STEPS": 10**9}),
-    ("lines stall stop", "the line attempt ends when its residual stalls", {}, {"solver:LINES_RESIDUAL_STALL": None}),
+    ("damped tighten", "a damped step on a nearly settled set tightens eta", {}, {"forcing:next_eta": _eta_kept}),
+    (
+        "damped-settled tighten",
+        "only a damped step on a nearly settled set tightens eta (off: any damped step)",
+        {},
+        {"forcing:settled": _always},
+    ),
+    (
+        "decade tightening",
+        "eta tightens a decade a damped step (off: to ETA_MIN at once)",
+        {},
+        {"forcing:next_eta": _eta_min_at_once},
+    ),
+    ("eta floor", "eta never tightens below ETA_MIN", {}, {"forcing:ETA_MIN": 0.0}),
+    ("cycling stop", "damping and the symmetric start's stop after CYCLING_STEPS", {}, {"newton:CYCLING_STEPS": 10**9}),
+    ("cycling steps 3", "three steps show cycling (off: two)", {}, {"newton:CYCLING_STEPS": 2}),
+    ("cycling steps 3 vs 5", "three steps show cycling (off: five)", {}, {"newton:CYCLING_STEPS": 5}),
+    ("lines maxiter share", "the line attempt may take half of maxiter", {}, {"solver:LINES_MAXITER_SHARE": 1.0}),
     (
         "near-full start",
         "the clipped full-contact pressure when it is nearly right",
         {},
         {"start:NEAR_FULL_CONTACT": 0.0},
     ),
-    ("strong coarse start", "strong operators coarsen from 128 points", {}, {"start:COARSEN_MIN_SIZE_STRONG": 10**12}),
-    ("strong gap scale", "GAP_SCALE_STRONG (off: GAP_SCALE for all)", {}, {"newton:GAP_SCALE_STRONG": 10.0}),
-    ("eta floor", "eta never tightens below ETA_MIN", {}, {"forcing:ETA_MIN": 0.0}),
+    ("coarse start on small grids", "coarsen from 128 points (off: from 2**18)", {}, {"start:COARSEN_MIN_SIZE": 2**18}),
     (
-        "large-grid exact preconditioner",
-        "periodic cells from 2**17 points",
+        "symmetric coarse start on small grids",
+        "coarsen from 128 points (off: from 2**18 unless strongly non-symmetric)",
         {},
-        {"newton:PRECONDITION_MIN_SIZE": 10**12},
+        {"solver:wants_coarse_start": _coarse_large_unless_strong},
     ),
-    ("lines maxiter share", "the line attempt may take half of maxiter", {}, {"solver:LINES_MAXITER_SHARE": 1.0}),
-    ("long GMRES restarts", "restart length up to RESTART_MAX by memory (off: 30)", {}, {"krylov:RESTART_MAX": 30}),
+    ("gap scale 0.3", "GAP_SCALE 0.3 cells in the residual's gap scale (off: 1)", {}, {"newton:GAP_SCALE": 1.0}),
+    (
+        "gap scale 0.3 vs 10",
+        "GAP_SCALE 0.3 cells in the residual's gap scale (off: 10)",
+        {},
+        {"newton:GAP_SCALE": 10.0},
+    ),
     ("gap floor", "the gap scale is held above GAP_FLOOR_SHARE of the heights", {}, {"newton:GAP_FLOOR_SHARE": 0.0}),
+    ("exact preconditioner", "periodic cells: the exact inverse on the set", {}, {"newton:_preconditioner": _no_exact}),
+    (
+        "exact preconditioner on small grids",
+        "the exact inverse on every grid (off: from 2**17 points)",
+        {},
+        {"newton:_preconditioner": _exact_from_2_17},
+    ),
+    (
+        "line batches",
+        "the line preconditioner inverts CHUNK lines per batched call (off: one line per call)",
+        {},
+        {"inner:line_preconditioner": functools.partial(line_preconditioner.line_preconditioner, chunk=1)},
+    ),
+    ("long GMRES restarts", "restart length up to RESTART_MAX by memory (off: 30)", {}, {"krylov:RESTART_MAX": 30}),
     ("round-off floor stop", "stop at the residual's round-off floor", {}, {"newton:FLOOR_MARGIN": 0.0}),
     (
         "reorthogonalisation",
@@ -99,26 +175,17 @@ MECHANISMS = [
     ),
     (
         "loose starts",
-        "the coarse solve and symmetric start stop at START_RTOL (off: rtol)",
+        "the coarse solve and symmetric start stop at sqrt(rtol) (off: rtol)",
         {},
-        {"start:START_RTOL": 0.0},
+        {"solver:start_rtol": _own_rtol, "newton:start_rtol": _own_rtol},
+    ),
+    (
+        "square-root start",
+        "the starts stop at sqrt(rtol) (off: at 1e-3)",
+        {},
+        {"solver:start_rtol": _start_rtol_1e_3, "newton:start_rtol": _start_rtol_1e_3},
     ),
     ("twelve halvings", "line search down to 1/2**12 (off: 1/2**4)", {}, {"newton:SEARCH_HALVINGS": 4}),
-    ("gap scale 10", "GAP_SCALE cells in the residual's gap scale (off: 1)", {}, {"newton:GAP_SCALE": 1.0}),
-    (
-        "large-grid-only coarse start",
-        "non-strong operators coarsen from 2**18 points (off: from 128, as strong ones)",
-        {},
-        {"start:COARSEN_MIN_SIZE": 128},
-    ),
-    ("restart floor", "at least RESTART_MIN GMRES vectors (off: 1)", {}, {"krylov:RESTART_MIN": 1}),
-    ("settling changes", "a set is settling at <= 100 changes (off: 10)", {}, {"forcing:SETTLING_CHANGES": 10}),
-    (
-        "cycling steps",
-        "five steps without a new low end the symmetric start (off: two)",
-        {},
-        {"newton:CYCLING_STEPS": 2},
-    ),
 ]
 
 
@@ -248,7 +315,7 @@ def cases(quick=False):
     s = bem.surfaces.sinusoid(64, L, amplitude=2e-6)
     out.append(_rough_case("sinusoid 64², SLS 1e4, xi 1, load 0.8", s, sls(1e4), 1.0, 0.8))
     if not quick:
-        # near full contact: without its start this case alone takes minutes
+        # near full contact: the near-full start's case (28 products with it, 1162 without)
         out.append(_rough_case("2-D 32², SLS 1e4, xi 1, load 0.9", rough(32), sls(1e4), 1.0, 0.9))
         # the path-sensitive case of docs/theory.md §4.2 (at 32², E_inf/E0 1e4, xi 100)
         out.append(_rough_case("2-D 32², SLS 10000, xi 100", rough(32), sls(1e4), 1e2))

@@ -14,7 +14,8 @@ Preconditioners, chosen once per solve:
   periodic cells (one FFT pair), the padded periodic cell's on isolated domains;
 - ``False``: none.
 
-Inner solves that stop far above single-precision round-off use the operator's float32 twin
+Inexact inner solves (stopping at least :data:`~bem.contact.forcing.ETA_MIN` of their right-hand
+side, far above single-precision round-off) use the operator's float32 twin
 (``op.single_precision()``); each Newton point's displacement is recomputed in float64, so
 the solution keeps full accuracy.
 """
@@ -24,16 +25,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import krylov
-from .forcing import TIGHTEN
+from .forcing import ETA_MIN, TIGHTEN
 from .line_preconditioner import line_preconditioner
 from .operator import SinglePrecision
 
 __all__ = ["InnerSolver", "Problem", "projected", "restricted"]
-
-SINGLE_PRECISION_RTOL = 1e-3
-"""Relative inner tolerance from which float32 products are used: float32 round-off (~1e-7 times
-the conditioning) stays far below it. Ablation row "float32 inner solves": the same products
-(1.01x off) for the CPU time (0.61 s off against 0.35 s on a 512² elastic solve)."""
 
 
 @dataclass(frozen=True)
@@ -154,7 +150,9 @@ class InnerSolver:
             b -= b.mean()
         norm_b = float(np.linalg.norm(b))
         atol, tighten = self._atol(pb.final_atol, norm_b, idx.size, eta, tighten)
-        work = self.single if atol >= SINGLE_PRECISION_RTOL * norm_b else op
+        # an inexact Newton point (at least ETA_MIN of its rhs) keeps float32 round-off, ~1e-7
+        # times the conditioning, far below its tolerance (ablation row "float32 inner solves")
+        work = self.single if atol >= ETA_MIN * norm_b else op
         matvec = restricted(work.displacement, idx, pb.ht.shape, pb.load_control, getattr(work, "dtype", float))
         z, _, k = self._krylov(matvec, b, atol, self._preconditioner(pb, work, contact, idx))
         self.matvecs += k

@@ -14,58 +14,55 @@ the residual no longer falls although it is within :data:`FLOOR_MARGIN` of its r
 
 import logging
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
 from . import forcing as fc
 from .inner import InnerSolver, Problem
 from .operator import ExactInverse, strongly_nonsymmetric
-from .start import START_RTOL, first_iterate, wants_symmetric_start
+from .start import first_iterate, start_rtol, wants_symmetric_start
 
 __all__ = ["Attempt", "ContactSolution", "attempt_solve", "complementarity_residual", "line_search", "roundoff_floor"]
 
 log = logging.getLogger(__name__)
 
-GAP_SCALE = 10.0
-"""The residual's gap scale in one cell's displacement under the mean pressure: larger is cheaper;
-10 keeps the pressure error under 4 rtol on the tested cases (``tests/bem/test_rtol_meaning.py``).
-Part of the stopping test; ablation row "gap scale 10" (1 instead): 1.004x the products."""
-GAP_SCALE_STRONG = 0.3
-"""The same for strongly non-symmetric operators, whose pressure error per gap error is larger.
-Ablation row "strong gap scale" (``GAP_SCALE`` for all): 0.99x the products, but the pressure
-error reaches 92 rtol."""
+GAP_SCALE = 0.3
+"""The residual's gap scale in one cell's displacement under the mean pressure: it makes the
+stopping test bound the pressure error (``tests/bem/test_rtol_meaning.py``), one value for every
+operator. Strongly non-symmetric operators move the pressure most per gap error and set it:
+ablation row "gap scale 0.3" (1 instead): 0.98x the products and a pressure error of 9.8 rtol, at
+the 10 rtol bound; row "gap scale 0.3 vs 10": 1.01x and 72 rtol. At 0.3 the largest error on the
+case set is 1.9 rtol. Symmetric operators alone would allow 10, which saves them too little to
+keep a second scale (one scale for all costs 1.006x the products against 10 for them)."""
 GAP_FLOOR_SHARE = 1e-4
 """Smallest gap scale as a share of the height range: below it round-off of the gap would stop
 tight solves (ablation row "gap floor": no product on the set, but the 4096-point profile of
 ``tests/bem/contact/test_roundoff.py`` reaches rtol 1e-11 only with it)."""
 SEARCH_HALVINGS = 12
 """Step lengths 1/2 ... 1/2**12 tried by the line search: they cost no product. Ablation row
-"twelve halvings" (4 instead): 0.70x the products on the case set (the sinusoid near full contact
-4738 against 9776), no case lost, but 0.999x on the six 512² friction curves of ``viscobem bench
-curve``, where the cost is (``docs/theory.md`` §4.2): not worth changing."""
-ASCENTS = 3
-"""Rising residuals in a row after which a symmetric problem is damped by the line search: its
-plain Newton steps are cycling. No case of the ablation's quick set needs it; the elastic
-Westergaard profile does from n = 4096 up (``tests/bem/test_westergaard.py``, slow): without it
-8192 points take 73 active-set steps (32 with it) and 16384 cycle for 400 steps at residual 12
-(31 steps with it)."""
-CYCLING_STEPS = 5
-"""Steps without a new low in set changes after which an attempt that only places the set (the
-symmetric-part start) ends: its set cycles. Ablation row "cycling stop": no effect with the coarse
-start on; without it (``coarsen=False``) the symmetric-part start of a 512² rubber cycles
-(``tests/bem/contact/test_krylov.py``); row "cycling steps" (2 instead): 1.34x the products and the
-sinusoid near full contact lost."""
-NESTED_ETA = 0.01
-"""Forcing term of symmetric problems started from the coarser grid, whose set is nearly right:
-Newton's local convergence needs the tighter solves, and looser ones flip points at the margin
-of broad-band contacts. Ablation row "nested eta": no case of the quick set takes this path; the
-1024² elastic broad-band case of the full set takes 216 products with it, 237 without."""
+"twelve halvings" (4 instead): 0.71x the products on the case set (the sinusoid near full contact
+4767 against 9832, the 1-D rubber curve 1303 against 1735), no case lost, but 0.999x on the six
+512² friction curves of ``viscobem bench curve``, where the cost is (``docs/theory.md`` §4.2)."""
 PRECONDITION_MIN_SIZE = 2**17
 """Grid points from which the exact full-contact inverse pays its extra FFT pair as a
-preconditioner: smaller restricted systems are well conditioned. Ablation row "large-grid exact
-preconditioner": no quick case is this large; at 512² the preconditioned solve takes fewer
-products in the same run (``tests/bem/contact/test_krylov.py``)."""
+preconditioner: smaller restricted systems are well conditioned. Below it the preconditioner is
+also a hazard: applied in single precision to approach-controlled solves at rtol 1e-12 on 32²
+cells (tests/bem/test_solver.py, slow), its GMRES correction overflowed float32. Ablation row
+"large-grid exact preconditioner": 1.017x products on the quick set without the size limit."""
+CYCLING_STEPS = 3
+"""Steps in a row that show an iteration cycling. A symmetric problem whose residual rises this
+many times in a row is damped by the line search from then on: its plain Newton steps cycle. An
+attempt that only places the set (the symmetric-part start) ends once its set changes have had no
+new low for this many steps. No case of the ablation set needs either (row "cycling stop": 1.00x
+the products), nor, from its coarse start, the elastic Westergaard profile (2 active-set steps
+from 4096 to 16384 points). From the full-contact start (``coarsen=False``) 16384 points need the
+damping: 66 steps with it, 400 without, cycling at residual ~800 (``tests/bem/test_westergaard.py``,
+slow). Without the stop, with ``coarsen=False``, the symmetric-part start of a 512² rubber cycles
+(``tests/bem/contact/test_krylov.py``). Row "cycling steps 3" (2 instead): 0.65x the products, all
+of it the sinusoid near full contact (2488 against 9832), and 15 steps instead of 66 on the
+16384-point Westergaard profile from full contact, but not run over the stress suite; row
+"cycling steps 3 vs 5": 1.00x."""
 FLOOR_MARGIN = 30.0
 """A residual within this factor of its round-off floor (:func:`roundoff_floor`) that stops
 falling on a settled set is at the floor: the floor is an estimate of the precision of the
@@ -150,7 +147,8 @@ class SetTrack:
 
 @dataclass(frozen=True)
 class ResidualTrack:
-    """The lowest residual and the steps since; whether the last step stalled at the floor."""
+    """The lowest residual and the steps since; whether the last step stalled at the floor; rises
+    in a row."""
 
     lowest: float
     since_lowest: int = 0
@@ -208,11 +206,10 @@ def line_search(p, g, p_new, g_new, c, *, full):
     return float(ts[k]) if values[k] < m0 else float(ts[-1])
 
 
-def problem_scales(op, heights, mean_pressure, approach, rtol, *, strong, p_mean=None):
+def problem_scales(op, heights, mean_pressure, approach, rtol, *, p_mean=None):
     """The scaled :class:`~bem.contact.inner.Problem`: ``p_ref`` the mean pressure (under
     displacement control ``p_mean``, that of the first Newton point, once known) and ``h_ref =
-    GAP_SCALE a0 p_ref``, the displacement of :data:`GAP_SCALE` cells under it
-    (:data:`GAP_SCALE_STRONG` for strongly non-symmetric operators, ``strong``), held between
+    GAP_SCALE a0 p_ref``, the displacement of :data:`GAP_SCALE` cells under it, held between
     :data:`GAP_FLOOR_SHARE` of the surface's height range and that range (near full contact of
     soft solids)."""
     ht = heights - heights.max()
@@ -224,7 +221,7 @@ def problem_scales(op, heights, mean_pressure, approach, rtol, *, strong, p_mean
         p_ref = float(p_mean)
     else:  # before the first iterate: the pressure that pushes one cell by the approach
         p_ref = max(float(approach), np.ptp(ht) * 1e-3) / a0
-    h_ref = (GAP_SCALE_STRONG if strong else GAP_SCALE) * a0 * p_ref
+    h_ref = GAP_SCALE * a0 * p_ref
     ptp = float(np.ptp(ht))
     if ptp > 0:  # between round-off of the heights and their range
         h_ref = min(max(h_ref, GAP_FLOOR_SHARE * ptp), ptp)
@@ -254,7 +251,7 @@ class _Run:
 
     def step_length(self, it, new, changed, damped):
         """Non-symmetric problems are damped by the line search; symmetric ones take the Newton
-        point until their residual rises :data:`ASCENTS` times in a row, and so does an unchanged
+        point until their residual rises :data:`CYCLING_STEPS` times in a row, and so does an unchanged
         set (the same system solved more accurately)."""
         if not (changed and damped):
             return 1.0
@@ -290,7 +287,7 @@ def _iterate(run, it):
             eta = fc.next_eta(eta, damped=t < 1.0, settled=fc.settled(changed))
         previous, it = it.residual, it.toward(new, t, run.pb)
         residuals = residuals.after(previous, it.residual, unchanged=not changed, floor=roundoff_floor(run.pb, it))
-        damped = damped or residuals.ascents >= ASCENTS
+        damped = damped or residuals.ascents >= CYCLING_STEPS
         _log_step(outer, changed, t, it, run.inner.matvecs)
     return it, outer, residuals
 
@@ -343,7 +340,7 @@ def _rounded_up(x):
 def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, options, initial=None, initial_approach=None):
     """One attempt of the active-set iteration (never raises; see :class:`Attempt`)."""
     strong = strongly_nonsymmetric(op)
-    pb = problem_scales(op, heights, mean_pressure, approach, rtol, strong=strong)
+    pb = problem_scales(op, heights, mean_pressure, approach, rtol)
     inner = InnerSolver(op, _preconditioner(op, pb, attempt, options, strong), options)
 
     def solve_symmetric():  # a robust CG solve that puts the set near its place
@@ -353,7 +350,7 @@ def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, option
             heights,
             mean_pressure=mean_pressure,
             approach=approach,
-            rtol=max(rtol, START_RTOL),
+            rtol=start_rtol(rtol),
             attempt=sym,
             options=options,
         )
@@ -366,12 +363,9 @@ def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, option
         solve_symmetric=solve_symmetric,
         symmetric_start=wants_symmetric_start(op, pb.ht, strong, options),
     )
-    if initial_approach is not None and initial is not None and op.is_symmetric:
-        # nested iteration: the set is nearly right, Newton's local convergence needs tight solves
-        attempt = replace(attempt, eta=min(attempt.eta, NESTED_ETA))
     p, u, d, _ = inner.newton_point(pb, contact, p, None, attempt.eta)
     if not pb.load_control and p.mean() > 0:  # displacement control: now the mean pressure is known
-        pb = problem_scales(op, heights, mean_pressure, approach, rtol, strong=strong, p_mean=p.mean())
+        pb = problem_scales(op, heights, mean_pressure, approach, rtol, p_mean=p.mean())
     g = u - pb.ht - d
     first = Iterate(p, u, g, d, contact, complementarity_residual(p, g, pb.p_ref, pb.h_ref))
     run = _Run(op, pb, inner, attempt, rtol)
@@ -379,9 +373,13 @@ def attempt_solve(op, heights, *, mean_pressure, approach, rtol, attempt, option
 
 
 def _preconditioner(op, pb, attempt, options, strong):
-    """The attempt's preconditioner: its own choice, else the options', else by operator:
-    an approximate inverse (isolated domains) always pays; an exact one on large grids of
-    operators that are not strongly non-symmetric (elsewhere it costs more than it saves)."""
+    """The attempt's preconditioner: its own choice, else the options', else by operator, where
+    it has an approximate inverse (:class:`~bem.contact.operator.ApproximateInverse`): on isolated
+    domains it always pays; so does the exact one of periodic cells whose operator is not strongly
+    non-symmetric, on any grid (ablation rows "exact preconditioner" and "exact
+    preconditioner on small grids"; ``tests/bem/contact/test_krylov.py`` at 512²). Strongly
+    non-symmetric periodic operators have the line preconditioner or none: the full-contact
+    inverse does not remove their non-normality."""
     choice = attempt.precondition if attempt.precondition is not None else options.precondition
     if choice is None:
         approximate_only = not isinstance(op, ExactInverse)

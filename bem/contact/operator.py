@@ -36,8 +36,9 @@ __all__ = [
 STRONG_PHASE = math.pi / 4
 """Symbol phase (rad) above which an operator is strongly non-symmetric: there its skew part
 outweighs its symmetric part, and plain active-set steps from the full-contact start cycle. It
-selects the mechanisms of the ablation rows "symmetric-part start" (off: 1.30x the products and a
-case lost), "line preconditioner", "strong coarse start" and "strong gap scale"."""
+selects the mechanisms of the ablation rows "symmetric-part start" (off: 1.32x the products and a
+case lost) and "line preconditioner" (off: 1.84x), and keeps the exact full-contact inverse from
+preconditioning them."""
 
 
 @runtime_checkable

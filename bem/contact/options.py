@@ -39,8 +39,8 @@ class ContactOptions:
     may take more steps; tighter the reverse. The default halves the products of exact steps."""
     precondition: bool | None = None
     """Preconditioner from the operator's full-contact inverse restricted to the set: ``None``
-    chooses (isolated domains always; periodic cells from 2**17 points; strongly non-symmetric 2-D
-    periodic cells the line preconditioner first); ``True`` or ``False`` forces it on or off (no
+    chooses (isolated domains always, periodic cells from 2**17 points; strongly non-symmetric
+    periodic cells the line preconditioner first on 2-D cells, else none); ``True`` or ``False`` forces it on or off (no
     line preconditioner). An extra FFT pair per inner iteration against fewer iterations."""
     line_budget: int = 2**30
     """Bytes the line preconditioner's inverses may take (1 GiB); above it the attempt runs

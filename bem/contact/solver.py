@@ -14,11 +14,10 @@ otherwise [2]; non-symmetric problems are damped by a line search on ``||min(p, 
 which costs no product (:mod:`bem.contact.newton`).
 
 - Inexact Newton [3]: inner solves stop at a share ``eta`` of their right-hand side while
-  the set changes, tightly once it has settled; ``eta`` tightens when a step on a nearly
-  settled set is damped; it starts smaller on symmetric problems started from a coarser grid.
+  the set changes, tightly once it has settled; ``eta`` tightens when a step on a nearly settled set is damped.
 - Preconditioners: ``R A^-1 R^T`` (full-contact inverse restricted to ``C``) on large grids;
   for strongly non-symmetric 2-D operators :mod:`bem.contact.line_preconditioner`.
-- Nested iteration [4]: large grids start from the grid with half the points per axis,
+- Nested iteration [4]: grids start from the grid with half the points per axis,
   which takes any warm start (kept where nearer the answer, :mod:`bem.contact.start`).
 - Retry (:func:`solve_contact`): strongly non-symmetric 2-D operators first try the line
   preconditioner, then an unpreconditioned attempt; others make one attempt.
@@ -50,7 +49,7 @@ from ..parallel import blas_limit
 from .newton import Attempt, ContactSolution, attempt_solve, complementarity_residual
 from .operator import LineFactors, strongly_nonsymmetric
 from .options import MAXITER, RTOL, ContactOptions
-from .start import START_RTOL, coarse_start, nearer, wants_coarse_start
+from .start import coarse_start, nearer, start_rtol, wants_coarse_start
 
 __all__ = ["ContactOptions", "ContactSolution", "complementarity_residual", "solve_contact"]
 
@@ -59,12 +58,14 @@ DEFAULT_OPTIONS = ContactOptions()
 
 LINES_MAXITER_SHARE = 0.5
 """Share of ``maxiter`` the line-preconditioned attempt may take, leaving the rest to the
-unpreconditioned one. Ablation row "lines maxiter share": no effect on the set; it keeps steps for
-the second attempt (``tests/bem/test_robustness.py``)."""
+unpreconditioned one: it ends a line attempt that creeps. Ablation row "lines maxiter share": no
+effect on the case set; it keeps steps for the second attempt (``tests/bem/test_robustness.py``)."""
 LINES_RESIDUAL_STALL = 30
 """Steps without a new low in the residual that end the line-preconditioned attempt (it cycles
-on some near-full contacts). Ablation row "lines stall stop": no effect on the quick set; off
-costs 1.29x the products on the path-sensitive 32² case (``docs/theory.md`` §4.2)."""
+on some near-full contacts and creeps on stiff ones). Measured: no effect on the quick ablation
+set; without it the path-sensitive 32² case takes 1.075x the products, and the 128² cell at
+E_inf/E0 = 1e4 of ``tests/bem/test_robustness.py`` spends 200 line steps instead of 44 before the
+unpreconditioned attempt (``docs/theory.md`` §4.2)."""
 
 
 def solve_contact(
@@ -150,7 +151,7 @@ def _coarse(op, heights, maxiter, initial, problem):
             coarse_heights,
             mean_pressure=problem["mean_pressure"],
             approach=problem["approach"],
-            rtol=max(problem["rtol"], START_RTOL),
+            rtol=start_rtol(problem["rtol"]),
             maxiter=maxiter,
             initial=warm,
             raise_on_failure=False,

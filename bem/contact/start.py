@@ -4,9 +4,8 @@ In order of preference:
 
 1. the same problem solved on the grid with half the points per axis (nested iteration,
    :func:`coarse_start`), itself warm-started from the caller's warm start sampled there, and
-   interpolated back (:class:`~bem.contact.operator.Coarsening`): on large grids (from
-   :data:`COARSEN_MIN_SIZE` points), and for strongly non-symmetric operators down to
-   :data:`COARSEN_MIN_SIZE_STRONG` points unless the clipped full-contact pressure is nearly the
+   interpolated back (:class:`~bem.contact.operator.Coarsening`): on grids from
+   :data:`COARSEN_MIN_SIZE` points, unless the clipped full-contact pressure is nearly the
    answer. The first contact set is then the one a Newton step would pick from that pressure and
    its gap at the coarse approach, ``p - c g > 0``. A warm start is kept instead when, sampled on
    the coarse grid, its contact set differs from the coarse solution's at fewer points than the
@@ -29,45 +28,50 @@ about a cell per step; the coarse grid brings it within a cell or two first.
 """
 
 import logging
+import math
 
 import numpy as np
 
-from .operator import Coarsening, ExactInverse, OwnStart, strongly_nonsymmetric
+from .operator import Coarsening, ExactInverse, OwnStart
 
 __all__ = [
     "COARSEN_MIN_SIZE",
-    "COARSEN_MIN_SIZE_STRONG",
     "NEAR_FULL_CONTACT",
-    "START_RTOL",
     "coarse_start",
     "first_iterate",
     "nearer",
+    "start_rtol",
     "wants_coarse_start",
     "wants_symmetric_start",
 ]
 
 log = logging.getLogger(__name__)
 
-COARSEN_MIN_SIZE = 2**18
-"""Grid points from which the coarse start pays for operators that are not strongly
-non-symmetric: below it their first set is cheap to find anyway. Ablation row "coarse start":
-off costs 1.19x the products (1.26x the geometric mean of the cases); row "large-grid-only coarse
-start" (from 128 points instead): 1.002x the products."""
-COARSEN_MIN_SIZE_STRONG = 128
-"""The same for strongly non-symmetric operators, whose contact edges move a cell per step on
-any grid (module docstring); below it the coarse problem no longer resembles the fine one.
-Ablation row "strong coarse start": off costs 1.19x the products."""
-START_RTOL = 1e-3
-"""Residual at which a start stops, the coarse solve and the symmetric-part start alike (at
-least the caller's rtol): it only has to place the set. Ablation row "coarse solve at 1e-3":
-0.998x the products against 1e-4 on the coarse solve; rows "loose coarse solve" and "loose
-symmetric start" (the caller's rtol instead): 1.005x the products each on the case set, but a
-solve asked for less than its round-off floor then asks its starts for it too and crawls (1716
-products against at most 669, ``tests/bem/contact/test_roundoff.py``)."""
+COARSEN_MIN_SIZE = 128
+"""Grid points from which the coarse start is used: below it the coarse problem no longer
+resembles the fine one. Ablation row "coarse start" (off): 1.22x the products, 1.35x the geometric
+mean of the cases; row "coarse start on small grids" (from 2**18 points instead): the same, since
+it pays most for strongly non-symmetric operators, whose contact edges move a cell per step on any
+grid (module docstring); row "symmetric coarse start on small grids" (from 2**18 points for the
+others only): 1.00x the products, 1.05x the geometric mean."""
 NEAR_FULL_CONTACT = 0.1
-"""Tension share under which the clipped full-contact pressure is the start (it is nearly the
-answer). Ablation row "near-full start": off costs 7.7x the products and breaks the 10 rtol
-pressure bound (39 rtol)."""
+"""Tension share under which the clipped full-contact pressure is the start, and no coarse start
+is made (it is nearly the answer). Ablation row "near-full start": no quick case is this near
+full contact; the 32² cell at 0.9 of its full-contact load (``E_inf/E0`` = 1e4, xi = 1) of the
+full set takes 28 products with it and 1162 without, the same pressure to 0.01 rtol."""
+
+
+def start_rtol(rtol):
+    """Residual at which a start stops, the coarse solve and the symmetric-part start alike:
+    ``sqrt(rtol)``. A start only has to place the set; Newton's local convergence is quadratic, so
+    from a residual of ``sqrt(rtol)`` one step on the right set reaches ``rtol``, and a start
+    asked for less than that spends products the fine grid would spend anyway. A solve asked for
+    less than its round-off floor asks its starts only for the square root of it, so they do not
+    crawl to the floor as well (starts asked for ``rtol`` took 1716 products against at most 669
+    at 1e-3 on ``tests/bem/contact/test_roundoff.py``'s profile). Ablation row "loose starts" (the
+    caller's rtol instead): 1.03x the products, 1.06x the geometric mean of the cases; row
+    "square-root start" (1e-3 instead, a tuned constant): 1.02x."""
+    return max(rtol, math.sqrt(rtol))
 
 
 def full_contact_pressure(op, ht, mean_pressure):
@@ -87,10 +91,9 @@ def wants_coarse_start(op, heights, mean_pressure, options):
     """Whether to start from the coarser grid (module docstring, item 1)."""
     if not (options.coarsen and isinstance(op, Coarsening)):
         return False
-    if strongly_nonsymmetric(op):
-        full = full_contact_pressure(op, heights - heights.max(), mean_pressure)
-        return heights.size >= COARSEN_MIN_SIZE_STRONG and not nearly_full_contact(full)
-    return heights.size >= COARSEN_MIN_SIZE
+    if heights.size < COARSEN_MIN_SIZE:
+        return False
+    return not nearly_full_contact(full_contact_pressure(op, heights - heights.max(), mean_pressure))
 
 
 def coarse_start(op, heights, solve):

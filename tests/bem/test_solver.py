@@ -220,9 +220,8 @@ def hard():
 def test_solution_satisfies_the_stated_conditions(hard):
     """Residual as documented in bem.contact: ``max |min(p / p_mean, g / h_ref)| <= rtol`` with
     ``h_ref = GAP_SCALE a0 p_mean`` held between ``GAP_FLOOR_SHARE ptp(h)`` and ``ptp(h)``
-    (``GAP_SCALE_STRONG`` above 45 degrees of symbol phase; :mod:`bem.contact.newton`)."""
+    (:mod:`bem.contact.newton`)."""
     from bem.contact import newton
-    from bem.contact.operator import strongly_nonsymmetric
     from bem.sliding import operator_for
 
     s, m, v, load = hard
@@ -230,8 +229,7 @@ def test_solution_satisfies_the_stated_conditions(hard):
     res = bem.solve(s, m, speed=v, load=load, rtol=rtol)
     p, g = res.pressure, res.gap
     op = operator_for(s, m, v)
-    scale = newton.GAP_SCALE_STRONG if strongly_nonsymmetric(op) else newton.GAP_SCALE
-    h_ref = scale * op.self_influence() * p.mean()
+    h_ref = newton.GAP_SCALE * op.self_influence() * p.mean()
     h_ref = min(max(h_ref, newton.GAP_FLOOR_SHARE * np.ptp(s.heights)), np.ptp(s.heights))
     assert res.success and "converged" in res.message
     assert 0.1 < res.contact_fraction < 0.9

@@ -63,10 +63,10 @@ def test_westergaard_full_contact_is_the_fourier_solution():
 
 
 # ------------------------------------------------------------ elastic solver vs Westergaard
-def _westergaard_solve(n, frac):
+def _westergaard_solve(n, frac, **kw):
     sol = westergaard(G0, LAM, frac * P_STAR, E, NU)
     surface = surfaces.sinusoid(n, LAM, amplitude=G0)
-    res = bem.solve(surface, bem.Material.elastic(E, NU), speed=0.0, load=sol.load, rtol=1e-10)
+    res = bem.solve(surface, bem.Material.elastic(E, NU), speed=0.0, load=sol.load, rtol=1e-10, **kw)
     x = np.arange(n) * LAM / n
     return sol, res, sol.pressure(x)
 
@@ -194,3 +194,12 @@ def test_westergaard_convergence_to_16k():
         l2.append(np.sqrt(np.mean((res.pressure - exact) ** 2) / np.mean(exact**2)))
     assert -1.05 < np.polyfit(np.log(ns), np.log(l2), 1)[0] < -0.95
     assert l2[-1] * ns[-1] < 1.0
+
+
+@pytest.mark.slow
+def test_westergaard_16k_without_the_coarse_start_needs_the_ascent_damping():
+    """From the full-contact start (``coarsen=False``) the plain Newton steps of 16384 points cycle
+    (400 steps at residual ~800 measured); damped after ``CYCLING_STEPS`` rising residuals in a row
+    (``bem.contact.newton``) they converge (66 steps measured). The coarse start takes 2 steps."""
+    _, res, _ = _westergaard_solve(16384, 0.5, contact_options=bem.contact.ContactOptions(coarsen=False))
+    assert res.success

@@ -12,11 +12,11 @@ from viscobem_cli.main import main
 
 
 def test_the_switch_patches_every_copy_and_restores_it():
-    tighten, gap = forcing.TIGHTEN, newton.GAP_SCALE_STRONG
-    with bench.switched_off({"forcing:TIGHTEN": 0.5, "newton:GAP_SCALE_STRONG": 10.0}):
+    tighten, gap = forcing.TIGHTEN, newton.GAP_SCALE
+    with bench.switched_off({"forcing:TIGHTEN": 0.5, "newton:GAP_SCALE": 10.0}):
         assert forcing.TIGHTEN == inner.TIGHTEN == 0.5  # inner imported it by name
-        assert newton.GAP_SCALE_STRONG == 10.0
-    assert forcing.TIGHTEN == inner.TIGHTEN == tighten and newton.GAP_SCALE_STRONG == gap
+        assert newton.GAP_SCALE == 10.0
+    assert forcing.TIGHTEN == inner.TIGHTEN == tighten and newton.GAP_SCALE == gap
 
 
 def test_the_switch_restores_after_an_error():

@@ -28,7 +28,7 @@ def test_prolong_keeps_the_coarse_values_the_mean_and_the_sign(shape):
     np.testing.assert_allclose(mid, 0.5 * (p + np.roll(p, -1, axis=0)))
 
 
-def test_no_coarse_start_on_odd_or_small_grids():
+def test_no_coarse_start_on_odd_or_small_grids_or_near_full_contact():
     material = bem.Material.elastic(1e7)
 
     def never(*args):
@@ -36,13 +36,15 @@ def test_no_coarse_start_on_odd_or_small_grids():
 
     odd = PeriodicHalfSpace((2**18 + 1,), 0.01, material, 0.0)
     assert coarse_start(odd, np.zeros(odd.shape), never) == (None, 0.0, None)
-    h = np.zeros((256, 256))
+    h = np.zeros((8, 8))
     small = PeriodicHalfSpace(h.shape, 0.01, material, 0.0)
     assert small.size < start.COARSEN_MIN_SIZE
     assert not start.wants_coarse_start(small, h, 1e3, ContactOptions())
-    big = PeriodicHalfSpace((512, 512), 0.01, material, 0.0)
-    assert start.wants_coarse_start(big, np.zeros(big.shape), 1e3, ContactOptions())
-    assert not start.wants_coarse_start(big, np.zeros(big.shape), 1e3, ContactOptions(coarsen=False))
+    big = PeriodicHalfSpace((16, 16), 0.01, material, 0.0)
+    rough = 1e-5 * np.random.default_rng(1).standard_normal(big.shape)
+    assert start.wants_coarse_start(big, rough, 1e3, ContactOptions())
+    assert not start.wants_coarse_start(big, rough, 1e3, ContactOptions(coarsen=False))
+    assert not start.wants_coarse_start(big, np.zeros(big.shape), 1e3, ContactOptions())  # full contact
 
 
 def test_strongly_nonsymmetric_problems_coarsen_on_small_grids_unless_nearly_in_full_contact():
@@ -53,7 +55,7 @@ def test_strongly_nonsymmetric_problems_coarsen_on_small_grids_unless_nearly_in_
     assert start.wants_coarse_start(op, s.heights, 10.0, ContactOptions())
     assert not start.wants_coarse_start(op, s.heights, 1e9, ContactOptions())  # nearly full contact
     tiny = PeriodicHalfSpace((64,), s.length, rubber, 1.0)
-    assert tiny.size < start.COARSEN_MIN_SIZE_STRONG
+    assert tiny.size < start.COARSEN_MIN_SIZE
     assert not start.wants_coarse_start(tiny, s.heights[::4], 10.0, ContactOptions())
 
 

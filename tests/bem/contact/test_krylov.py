@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import bem
-from bem.contact import ContactOptions, krylov, newton
+from bem.contact import ContactOptions, krylov
 
 
 def _spd(n, cond, rng, spread=None):
@@ -105,10 +105,8 @@ def test_symmetric_warm_start_stops_cycling():
     ],
 )
 def test_preconditioned_contact_solve_agrees_and_saves_products(material):
-    """At 10-20 % contact on 512² (above ``PRECONDITION_MIN_SIZE``) the restricted inverse must
-    not change the answer (both solves are converged to rtol 1e-10, so the pressures agree to
-    ~1e-8) and must save products."""
-    assert 512**2 >= newton.PRECONDITION_MIN_SIZE
+    """At 10-20 % contact on 512² the restricted inverse must not change the answer (both solves
+    are converged to rtol 1e-10, so the pressures agree to ~1e-8) and must save products."""
     s = bem.surfaces.self_affine(512, 0.01, hurst=0.8, scales=64, rms_height=2e-5, seed=3)
     speed = 1e-2 * 0.01 / 0.01
     out = {}

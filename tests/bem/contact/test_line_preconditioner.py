@@ -142,12 +142,12 @@ def test_line_preconditioner_same_answer_fewer_products():
 
 
 def test_line_attempt_that_stalls_falls_back(monkeypatch):
-    """A line-preconditioned attempt whose residual stops reaching new lows (here at once:
-    ``bem.contact.solver.LINES_RESIDUAL_STALL = 0``) hands over to the unpreconditioned careful
-    solve, which converges; the message and the counts include both attempts."""
+    """A line-preconditioned attempt that spends its share of ``maxiter`` (here after one step:
+    ``bem.contact.solver.LINES_MAXITER_SHARE = 0``) hands over to the unpreconditioned solve,
+    which converges; the message and the counts include both attempts."""
     s, kw = _rubber_problem(32, FAST)
     reference = bem.solve(s, RUBBER, **kw)
-    monkeypatch.setattr(solver, "LINES_RESIDUAL_STALL", 0)
+    monkeypatch.setattr(solver, "LINES_MAXITER_SHARE", 0.0)
     r = bem.solve(s, RUBBER, **kw)
     assert r.success and "after a first attempt of 1 " in r.message
     np.testing.assert_allclose(r.pressure, reference.pressure, rtol=0, atol=1e-6 * reference.pressure.max())
