@@ -12,15 +12,15 @@ Units SI: moduli in Pa, lengths in m, temperatures in K.
   size, and its rms slope is of order 0.1 (the half-space theory assumes small slopes; above 1
   it does not hold). Heights that span more than the cell are refused, a slope above 1 is
   warned about; both name micrometres, the usual mistake.
-- **Temperatures** (:func:`temperature_warnings`): no polymer is a viscoelastic solid above
-  :data:`MAX_KELVIN`; a shift law measured near its reference temperature is not to be trusted
-  more than :data:`FAR_KELVIN` from it, nor a fitted material more than :data:`FAR_DATA`
+- **Temperatures**: no polymer is a viscoelastic solid above :data:`MAX_KELVIN`, which
+  :func:`bem.materials.temperature.check_kelvin` refuses wherever a temperature enters.
+  :func:`temperature_warnings` warns where a shift law measured near its reference temperature
+  is used more than :data:`FAR_KELVIN` from it, or a fitted material more than :data:`FAR_DATA`
   outside the temperatures of its data.
 """
 
 import numpy as np
 
-from .checks import show
 from .errors import InputError
 
 __all__ = [
@@ -100,12 +100,7 @@ def height_checks(heights, side, *, name="heights", advice=UNIT_ADVICE):
 def temperature_warnings(T, *, reference=None, data=None):
     """Sentences where temperature ``T`` (K) is outside the temperatures of the ``data`` (K) a
     material was fitted to or, without data (an imposed law), far from the law's ``reference``
-    temperature; an InputError above :data:`MAX_KELVIN`."""
-    if T > MAX_KELVIN:
-        raise InputError(
-            f"T must be at most {MAX_KELVIN:g} K (polymers decompose below it), got {show(T)} K; "
-            "temperatures are absolute, in kelvin"
-        )
+    temperature. ``T`` has passed :func:`bem.materials.temperature.check_kelvin`."""
     if data is not None and len(data):
         low, high = float(np.min(data)), float(np.max(data))
         if T < low - FAR_DATA or T > high + FAR_DATA:
