@@ -55,10 +55,10 @@ def _never(*args, **kw):
     return False
 
 
-def _eta_min_at_once(eta, *, damped, settled):
+def _eta_min_at_once(eta, *, damped):
     from bem.contact import forcing
 
-    return forcing.ETA_MIN if damped and settled else eta
+    return forcing.ETA_MIN if damped else eta
 
 
 def _own_rtol(rtol):
@@ -69,12 +69,8 @@ def _start_rtol_1e_3(rtol):
     return max(rtol, 1e-3)
 
 
-def _eta_kept(eta, *, damped, settled):
+def _eta_kept(eta, *, damped):
     return eta
-
-
-def _always(*args, **kw):
-    return True
 
 
 def _default_choice(attempt, options):
@@ -113,13 +109,7 @@ MECHANISMS = [
     ("preconditioners", "every preconditioner (isolated: padded inverse; lines)", {"precondition": False}, {}),
     ("float32 inner solves", "loose inner products in single precision", {"single_precision": False}, {}),
     ("inexact Newton", "inner solves stop at eta of their rhs (off: eta 1e-6)", {"inner_eta": 1e-6}, {}),
-    ("damped tighten", "a damped step on a nearly settled set tightens eta", {}, {"forcing:next_eta": _eta_kept}),
-    (
-        "damped-settled tighten",
-        "only a damped step on a nearly settled set tightens eta (off: any damped step)",
-        {},
-        {"forcing:settled": _always},
-    ),
+    ("damped tighten", "a damped step tightens eta", {}, {"forcing:next_eta": _eta_kept}),
     (
         "decade tightening",
         "eta tightens a decade a damped step (off: to ETA_MIN at once)",

@@ -4,7 +4,8 @@ For a contact set ``C`` the Newton point solves ``A_CC p_C = h_C + delta`` (zero
 ``C``), under load control with ``sum p_C`` fixed (enforced by projecting out the mean on
 ``C``), as a correction to the current pressure: conjugate gradients when ``A`` is symmetric,
 restarted GMRES otherwise (:mod:`bem.contact.krylov`), to the absolute tolerance
-``max(eta ||b||, final_atol sqrt|C| tighten)``.
+``max(eta ||b||, final_atol sqrt|C| tighten)``. A loose GMRES solve (``eta > 0``) stops after one
+restart cycle at the latest, with its iterate: the active-set loop is its restart loop.
 
 Preconditioners, chosen once per solve:
 
@@ -85,15 +86,22 @@ class InnerSolver:
         single = options.single_precision and isinstance(op, SinglePrecision)
         self.single = op.single_precision() if single else op
         self.precondition = precondition
-        self.maxiter = op.size  # Krylov methods end in at most n steps in exact arithmetic
+        # CG ends within n steps in exact arithmetic; restarted GMRES need not, and n only caps its
+        # tight solves (loose ones take one restart cycle, _krylov)
+        self.maxiter = op.size
         self.matvecs = 0
         self.line_cache = {}
 
-    def _krylov(self, matvec, b, atol, M):
+    def _krylov(self, matvec, b, atol, M, loose):
+        """``krylov.cg`` or ``krylov.gmres`` to ``atol``; a ``loose`` GMRES solve for one restart cycle."""
         if self.op.is_symmetric:
             return krylov.cg(matvec, b, atol=atol, maxiter=self.maxiter, M=M)
         restart = krylov.restart_length(b.size, budget=self.options.restart_budget)
-        return krylov.gmres(matvec, b, atol=atol, maxiter=self.maxiter, M=M, restart=restart)
+        # a loose Newton point only moves the set: one restart cycle (the memory budget's basis) and
+        # its iterate. Cycles past it on a set that then changes are lost; on a repeated set the next
+        # active-set step starts again from the step's iterate, a restart that also checks the set
+        maxiter = restart if loose else self.maxiter
+        return krylov.gmres(matvec, b, atol=atol, maxiter=maxiter, M=M, restart=restart)
 
     def _preconditioner(self, pb, work, contact, idx):
         """The preconditioner on this set (a counted map), or None."""
@@ -154,7 +162,7 @@ class InnerSolver:
         # times the conditioning, far below its tolerance (ablation row "float32 inner solves")
         work = self.single if atol >= ETA_MIN * norm_b else op
         matvec = restricted(work.displacement, idx, pb.ht.shape, pb.load_control, getattr(work, "dtype", float))
-        z, _, k = self._krylov(matvec, b, atol, self._preconditioner(pb, work, contact, idx))
+        z, _, k = self._krylov(matvec, b, atol, self._preconditioner(pb, work, contact, idx), eta > 0)
         self.matvecs += k
         if pb.load_control:
             z -= z.mean()

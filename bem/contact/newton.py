@@ -284,7 +284,7 @@ def _iterate(run, it):
         new, tighten = run.point(contact, it, eta if changed else 0.0, tighten)
         t = run.step_length(it, new, changed, damped)
         if not a.own_forcing:
-            eta = fc.next_eta(eta, damped=t < 1.0, settled=fc.settled(changed))
+            eta = fc.next_eta(eta, damped=t < 1.0)
         previous, it = it.residual, it.toward(new, t, run.pb)
         residuals = residuals.after(previous, it.residual, unchanged=not changed, floor=roundoff_floor(run.pb, it))
         damped = damped or residuals.ascents >= CYCLING_STEPS

@@ -14,7 +14,7 @@ otherwise [2]; non-symmetric problems are damped by a line search on ``||min(p, 
 which costs no product (:mod:`bem.contact.newton`).
 
 - Inexact Newton [3]: inner solves stop at a share ``eta`` of their right-hand side while
-  the set changes, tightly once it has settled; ``eta`` tightens when a step on a nearly settled set is damped.
+  the set changes, tightly once it has settled; ``eta`` tightens when a step is damped.
 - Preconditioners: ``R A^-1 R^T`` (full-contact inverse restricted to ``C``) on large grids;
   for strongly non-symmetric 2-D operators :mod:`bem.contact.line_preconditioner`.
 - Nested iteration [4]: grids start from the grid with half the points per axis,
