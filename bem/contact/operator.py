@@ -37,7 +37,7 @@ STRONG_PHASE = math.pi / 4
 """Symbol phase (rad) above which an operator is strongly non-symmetric: there its skew part
 outweighs its symmetric part, and plain active-set steps from the full-contact start cycle. It
 selects the mechanisms of the ablation rows "symmetric-part start" (off: 1.32x the products and a
-case lost) and "line preconditioner" (off: 1.84x), and keeps the exact full-contact inverse from
+case lost) and "line preconditioner" (off: 1.34x), and keeps the exact full-contact inverse from
 preconditioning them."""
 
 
