@@ -198,12 +198,15 @@ class _Pardiso:
     def solve(self, b):
         if self._Q is None or self.deflated == 0:
             return self._plain(b)
-        # M^-1 A = I - P: x = y + Q z with y = M^-1 b and (M^-1 A Q) z = y - M^-1 A y, solved in
-        # the least-squares sense through the QR factors of M^-1 A Q
+        # x = y + Q z with y = M^-1 b: the error of y lies in the range of P (M = A + E, so
+        # (A^-1 - M^-1) b = A^-1 E M^-1 b, and M^-1 E = A^-1 E (I + ...)^-1 spans the same), and z
+        # minimises the true residual ||b - A y - A Q z|| through the QR factors of A Q. Products
+        # with A are exact where M^-1 is not: on the directions a perturbed pivot dominates,
+        # M^-1 A Q is nearly zero and carries nothing but the factor's round-off
         y = self._plain(b)
         y2 = y.reshape(y.shape[0], -1)
-        t = self._plain(self._A @ y2).reshape(y2.shape)
-        z = np.linalg.solve(self._Rw, self._Qw.T @ (y2 - t))
+        r = np.asarray(b, dtype=float).reshape(y2.shape) - self._A @ y2
+        z = np.linalg.solve(self._Rw, self._Qw.T @ r)
         return (y2 + self._Q @ z).reshape(y.shape)
 
     def deflate(self, seed=0):
@@ -214,9 +217,9 @@ class _Pardiso:
         largest, and stalls or diverges once that is near or above 1. A randomized range finder
         (``k`` Gaussian probes ``X``, ``P X = X - M^-1 A X``) finds the directions where ``P``
         exceeds :data:`DEFLATE_TOL`; ``k`` doubles until the smallest found is below it (at
-        most :data:`DEFLATE_MAX` probes). Every later solve is exact on them (two solves with
-        the factor and a product with ``A``) and refinement contracts by ``DEFLATE_TOL`` per
-        step. PARDISO's own refinement is switched off, so that ``M^-1`` is a fixed linear
+        most :data:`DEFLATE_MAX` probes). Every later solve is exact on them (a solve with the
+        factor, a product with ``A`` and a least-squares correction on their span, :meth:`solve`)
+        and refinement contracts by ``DEFLATE_TOL`` per step. PARDISO's own refinement is switched off, so that ``M^-1`` is a fixed linear
         operator. Returns False if this factor was deflated already.
         """
         if self._Q is not None:
@@ -236,7 +239,7 @@ class _Pardiso:
         self._Q = np.ascontiguousarray(U[:, keep])
         self.deflated = int(keep.sum())
         if self.deflated:  # none is possible: a factor only slow to refine may be close to A
-            self._Qw, self._Rw = np.linalg.qr(self._plain(self._A @ self._Q))
+            self._Qw, self._Rw = np.linalg.qr(self._A @ self._Q)
         if np.finfo(np.longdouble).eps < np.finfo(float).eps:  # x86: 64-bit mantissa
             self.extended = self._A.astype(np.longdouble)
         log.debug(
