@@ -135,6 +135,10 @@ def gmres(matvec, b, *, atol, maxiter, restart, M=None, reorthogonalise=0.5**0.5
             j_done = j + 1
             if abs(g[j + 1]) <= atol or k >= maxiter or H[j, j] == 0:
                 break
+        # breakdown on a singular system: the last product added no direction of A's range, so the
+        # least-squares solution lies in the earlier ones (its column would make the solve singular)
+        singular = bool(j_done) and H[j_done - 1, j_done - 1] == 0
+        j_done -= singular
         y = np.linalg.solve(np.triu(H[:j_done, :j_done]), g[:j_done]) if j_done else np.zeros(0)
         x += y @ V[:j_done] if M is None else M(y @ V[:j_done])
         # Arnoldi: b - A x_new = r - V_{j+1} Hbar y, without another product
@@ -142,6 +146,6 @@ def gmres(matvec, b, *, atol, maxiter, restart, M=None, reorthogonalise=0.5**0.5
         coef[0] += beta
         r = coef @ V[: j_done + 1]
         beta = float(np.linalg.norm(r))
-        if j_done and H[j_done - 1, j_done - 1] == 0:
+        if singular:
             break
     return x, beta, k
