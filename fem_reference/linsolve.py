@@ -219,8 +219,9 @@ class _Pardiso:
         exceeds :data:`DEFLATE_TOL`; ``k`` doubles until the smallest found is below it (at
         most :data:`DEFLATE_MAX` probes). Every later solve is exact on them (a solve with the
         factor, a product with ``A`` and a least-squares correction on their span, :meth:`solve`)
-        and refinement contracts by ``DEFLATE_TOL`` per step. PARDISO's own refinement is switched off, so that ``M^-1`` is a fixed linear
-        operator. Returns False if this factor was deflated already.
+        and refinement contracts by ``DEFLATE_TOL`` per step. PARDISO's own refinement is
+        switched off, so that ``M^-1`` is a fixed linear operator. Returns False if this factor
+        was deflated already.
         """
         if self._Q is not None:
             return False
