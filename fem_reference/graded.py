@@ -3,8 +3,9 @@
 A tensor mesh of rectangles, graded geometrically (:mod:`fem_reference.grading`):
 
 - in ``x`` toward the trailing and the leading contact edges (element size
-  ``a_c / resolution`` there, ``a_c`` the contact half-width), and further toward the
-  leading edge, where material enters the contact and each Prony term ``k`` relaxes over a
+  ``a_c / resolution`` there, ``a_c`` the contact half-width), further toward the trailing
+  edge (:data:`LAYER_ELEMENTS` elements across a zone one edge element wide about it), and
+  further toward the leading edge, where material enters the contact and each Prony term ``k`` relaxes over a
   layer of width ``ell_k = V tau_k`` behind the edge: the thinnest over the kept terms gets
   :data:`LAYER_ELEMENTS` elements if it is at least ``layer_floor * a_c / resolution`` (for a
   single kept term, :data:`SINGLE_TERM_FLOOR` instead, if lower); a thinner one gets elements of
@@ -137,13 +138,22 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
         # elements of the layer's size would be needles across it, and elements in between solved no
         # better (MAX_SPAN), so the layer is left to the edge elements and reported unresolved
         h_lead, resolved = h_edge, False
-    caps = [(trail, lead, h_edge)]
+    # the trailing edge, where the pressure falls to zero as the square root of the distance, gets
+    # LAYER_ELEMENTS elements across a zone one edge element wide about it, as the leading edge gets
+    # them across its layer: its place within a node spacing sets the low-speed friction, whose
+    # pressure centroid lies a small fraction of the contact ahead of its centre. The zone is twice
+    # the distance the edge may still move when the passes stop (rolling), so it settles inside it
+    h_trail = h_edge / LAYER_ELEMENTS
+    zone = (trail - 0.5 * h_edge, trail + 0.5 * h_edge)
+    caps = [(trail, lead, h_edge), (*zone, h_trail)]
     if resolved:
         # the whole layer at that size, and half a layer beyond it on each side: the nodal peak then
         # does not depend on where within that margin the edge settles (rolling's passes)
         pad = 0.5 * LAYER_ELEMENTS * h_lead
         caps.append((lead - thinnest - pad, lead + pad, h_lead))
-    x = graded_coordinates(-length, length, [trail, lead], [h_edge, h_lead], ratio=ratio, caps=caps)
+    # the zone's ends are foci too, so that the elements grow from them by the ratio
+    foci = [zone[0], trail, zone[1], lead]
+    x = graded_coordinates(-length, length, foci, [h_trail] * 3 + [h_lead], ratio=ratio, caps=caps)
     y = graded_coordinates(-length, 0.0, [0.0], [h_lead], ratio=ratio)
     mesh = half_space_boundaries(x, y)
     return HalfSpaceMesh(mesh, x, y, float(min(h_lead, h_edge)), (float(x[0]), float(x[-1])), float(-y[0]))

@@ -57,3 +57,22 @@ def test_fem_resolves_the_layer_of_a_standard_solid_below_the_floor():
     assert abs(r.peak_pressure / h.peak_pressure - 1) < 0.02
     assert abs(r.friction / h.friction - 1) < 0.01
     assert abs(r.friction_dissipation / h.friction - 1) < 0.01
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ratio", [10.0, 1000.0])
+def test_fem_two_decades_below_the_friction_peak(ratio):
+    # the friction is small there (the pressure centroid about 1 % of the contact width ahead of its
+    # centre) and where the trailing edge falls among the nodes sets its error. With the trailing edge
+    # meshed like the rest of the contact the forms were +0.86 / +2.12 % (ratio 10) and +0.49 / +2.82 %
+    # (ratio 1000) from Hunter, and this test fails; with its zone of LAYER_ELEMENTS elements measured
+    # -0.45 / +0.19 % and -0.38 / +0.59 %. Limit 1 % (the target): margin 1.7x over the larger
+    from viscobem_bench.fem import high_ratio_peak_speed
+
+    m = Material.standard_linear_solid(E0=2e6, E_inf=2e6 * ratio, relaxation_time=0.01, nu=0.5)
+    speed = 0.01 * high_ratio_peak_speed(ratio)
+    r = rolling_cylinder(m, radius=R, load=P, speed=speed)
+    h = hunter(m, radius=R, load=P, speed=speed)
+    assert r.success, r.message
+    assert abs(r.friction / h.friction - 1) < 0.01
+    assert abs(r.friction_dissipation / h.friction - 1) < 0.01

@@ -76,11 +76,13 @@ def test_deflated_solve_meets_the_limit_where_perturbed_pivots_dominate(stand_in
 
 def test_rolling_on_pardiso_agrees_with_superlu(stand_in):
     stand_in(4, 1e-4)
-    kw = dict(radius=R, load=P, speed=V, resolution=2)
+    # one mesh: a second is meshed on the edges the first solve found, which the two solvers place
+    # only within their residuals, and a segment of the graded mesh may gain an element with them
+    kw = dict(radius=R, load=P, speed=V, resolution=2, passes=1)
     reference = rolling_cylinder(SOLID, solver="splu", **kw)
     r = rolling_cylinder(SOLID, solver="pardiso", **kw)
     assert r.success and r.solver == "pardiso"
     assert r.linear_residual <= r.linear_residual_limit
-    # both meet the linear limit 1e-8 on the same discretisation (measured 3e-11 apart)
+    # both meet the linear limit 1e-8 on the same discretisation
     assert r.friction == pytest.approx(reference.friction, rel=1e-7)
     assert r.friction_dissipation == pytest.approx(reference.friction_dissipation, rel=1e-7)

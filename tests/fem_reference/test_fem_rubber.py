@@ -58,6 +58,22 @@ def test_graded_half_space_resolves_leading_layer():
     assert min(d[i - 1], d[i]) == pytest.approx(0.1 * 1e-5 / LAYER_ELEMENTS, rel=0.3)
 
 
+def test_graded_half_space_refines_the_trailing_edge():
+    # LAYER_ELEMENTS elements across an edge element about the trailing edge, half an edge element
+    # either side, growing beyond by at most the ratio (1.2 times it where segments meet: grading.py);
+    # the contact between keeps its edge elements
+    m = rubber(4, 100)
+    trail, lead, h_edge = -0.002, 0.003, 0.0025 / 5
+    hs = graded_half_space((trail, lead), m, 1e-3, resolution=5, length=0.1, ratio=1.25, layer_floor=1e-3)
+    mid = 0.5 * (hs.x[1:] + hs.x[:-1])
+    d = np.diff(hs.x)
+    zone = np.abs(mid - trail) < 0.5 * h_edge
+    assert zone.sum() >= LAYER_ELEMENTS and d[zone].max() <= h_edge / LAYER_ELEMENTS * (1 + 1e-9)
+    assert np.max(np.maximum(d[1:] / d[:-1], d[:-1] / d[1:])) <= 1.2 * 1.25
+    centre = np.abs(mid - 0.5 * (trail + lead)) < 0.5 * h_edge
+    assert h_edge / 1.25 < d[centre].min() and d[centre].max() <= h_edge * (1 + 1e-9)
+
+
 def test_graded_half_space_resolves_a_single_terms_layer_below_the_floor():
     # a standard solid's one layer is resolved below layer_floor if it is at least SINGLE_TERM_FLOOR
     # edge elements; thinner, or with several terms, the floor stays. Edge element 0.0025 / 5 = 5e-4 m,
@@ -80,13 +96,18 @@ def test_graded_half_space_resolves_a_single_terms_layer_below_the_floor():
 def test_graded_half_space_leaves_a_layer_to_the_edge_elements_in_a_block_beyond_its_span():
     # a layer the floor lets the mesh resolve (V tau_min = 1 um: LAYER_ELEMENTS elements of 0.25 um)
     # in a block of 0.1 m, 4e5 of them; in a block of 3 m, 1.2e7 > MAX_SPAN of them, the mesh is not
-    # refined toward it (edge elements 0.0025 / 5 = 5e-4 m, along x and in depth)
+    # refined toward it (edge elements 0.0025 / 5 = 5e-4 m in depth; along x the trailing edge's
+    # LAYER_ELEMENTS elements across an edge element are then the smallest)
     m = rubber(4, 100)
     assert 0.1 < MAX_SPAN * 1e-6 / LAYER_ELEMENTS < 3.0
-    for length, smallest in ((0.1, 1e-6 / LAYER_ELEMENTS), (3.0, 0.0025 / 5)):
+    h_edge = 0.0025 / 5
+    for length, along, depth in (
+        (0.1, 1e-6 / LAYER_ELEMENTS, 1e-6 / LAYER_ELEMENTS),
+        (3.0, h_edge / LAYER_ELEMENTS, h_edge),
+    ):
         hs = graded_half_space((-0.002, 0.003), m, 0.1, resolution=5, length=length, ratio=1.25, layer_floor=1e-3)
-        assert np.min(np.diff(hs.x)) == pytest.approx(smallest, rel=0.3)
-        assert np.diff(hs.y)[-1] == pytest.approx(smallest, rel=0.3)
+        assert np.min(np.diff(hs.x)) == pytest.approx(along, rel=0.3)
+        assert np.diff(hs.y)[-1] == pytest.approx(depth, rel=0.3)
 
 
 def test_fold_terms_only_inactive():
@@ -166,30 +187,32 @@ def test_rolling_reports_linear_residual_and_success():
 
 
 def test_graded_mesh_that_did_not_settle_says_so():
-    # one mesh, focused on the edges of the Hertz estimate: the solution's edges are elsewhere
+    # one mesh, focused on the edges of the Hertz estimate: the solution's trailing edge is 0.26 mm
+    # (more than half an edge element) behind it
     m = rubber(3, 30, nu=0.5)
-    r = rolling_cylinder(m, radius=R, load=P, speed=1e-4, resolution=2, solver="splu", passes=1)
+    r = rolling_cylinder(m, radius=R, load=P, speed=3e-4, resolution=2, solver="splu", passes=1)
     (note,) = [w for w in r.warnings if "did not settle" in w]
     assert "in 1 passes" in note and r.passes == 1
     assert r.peak_resolved == (r.thinnest_layer >= LAYER_ELEMENTS * r.smallest_element)
 
 
 def test_friction_forms_that_disagree_say_so(monkeypatch):
-    # two decades below the friction peak of a 20-term rubber (E_inf/E0 = 1000) the default mesh
-    # settles in one pass and its two forms of the friction differ by 2.0 % (against the BEM: +0.94 %
-    # moment, +2.96 % dissipation); the result must say so, and not where the gap is within FORM_GAP
+    # two decades below the friction peak of a 20-term rubber (E_inf/E0 = 1000), where the forms are
+    # furthest apart (measured 1.05 %: -0.41 % moment, +0.64 % dissipation against the BEM): the
+    # result must say so where the gap exceeds FORM_GAP, with the gap, and not where it is within
     from fem_reference import rolling
     from viscobem_bench.fem import broad_material
 
     m, R2, P2 = broad_material("equal20")
+    monkeypatch.setattr(rolling, "FORM_GAP", 0.0)
     r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6)
     gap = abs(r.friction_dissipation / r.friction - 1)
-    assert gap == pytest.approx(0.020, abs=0.003)
-    (note,) = [w for w in r.warnings if "forms of the friction differ" in w]
-    assert f"{gap:.2%}" in note
-    monkeypatch.setattr(rolling, "FORM_GAP", 0.05)
-    r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6)
-    assert not [w for w in r.warnings if "forms of the friction differ" in w]
+    assert 1e-3 < gap < 0.05
+    for limit, warned in ((0.5 * gap, True), (2.0 * gap, False)):
+        monkeypatch.setattr(rolling, "FORM_GAP", limit)
+        r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6)
+        notes = [w for w in r.warnings if "forms of the friction differ" in w]
+        assert len(notes) == warned and all(f"{gap:.2%}" in note for note in notes)
 
 
 @pytest.mark.slow
