@@ -40,7 +40,7 @@ log = logging.getLogger(__name__)
 # by more than this share of the friction, the mesh does not resolve what dissipates. Measured on the
 # graded mesh at resolution 6: at most 0.85 % apart at the four target speeds of three broad rubbers
 # and 0.7 % on Hunter's solid (E_inf/E0 = 10-1000) from v lambda / a0 = 0.3 up; two decades below a
-# broad rubber's friction peak 1.05 % apart, with both forms within 0.64 % of the BEM (2.0 % apart
+# broad rubber's friction peak 0.91 % apart, with both forms within 0.53 % of the BEM (2.0 % apart
 # and the dissipation form 3 % off with the trailing edge meshed like the rest of the contact)
 FORM_GAP = 0.01
 
