@@ -41,7 +41,9 @@ def _segment(a, b, foci, sizes, ratio, caps):
             end = pos + sign * step
             end = min(end, stop) if sign > 0 else max(end, stop)
             step = min(step, _size(end, foci, sizes, ratio, caps))
-        if sign * (pos + sign * step - stop) >= 0:
+        # a step that ends within round-off of ``stop`` is the last: segments that hold a whole
+        # number of elements (a zone of so many elements) keep it whatever the last bits of ``stop``
+        if sign * (pos + sign * step - stop) >= -1e-9 * step:
             break
         pos += sign * step
         pts.append(pos)
