@@ -93,7 +93,7 @@ def initial_edges(material, radius, load, speed):
     return -a, a
 
 
-def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=0.01):
+def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=0.01, coarsen=1.0):
     """A :class:`~fem_reference.mesh.HalfSpaceMesh` graded toward the contact ``edges``.
 
     Parameters
@@ -113,6 +113,9 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
     layer_floor : float
         Thinnest leading-edge layer the mesh resolves, in edge elements (and the element size
         toward a thinner one); none where that would take elements below ``length / MAX_SPAN``.
+    coarsen : float
+        Every size the contact sets (the edge elements, the trailing zone, the layer's elements)
+        times this, the same layers resolved: the twin of the rolling model's error estimate.
     """
     from .mesh import HalfSpaceMesh, half_space_boundaries
 
@@ -138,6 +141,7 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
         # elements of the layer's size would be needles across it, and elements in between solved no
         # better (MAX_SPAN), so the layer is left to the edge elements and reported unresolved
         h_lead, resolved = h_edge, False
+    h_edge, h_lead = coarsen * h_edge, coarsen * h_lead
     # the trailing edge, where the pressure falls to zero as the square root of the distance, gets
     # LAYER_ELEMENTS elements across a zone one edge element wide about it, as the leading edge gets
     # them across its layer: its place within a node spacing sets the low-speed friction, whose

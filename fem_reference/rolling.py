@@ -16,6 +16,8 @@ import logging
 import resource
 import time
 from dataclasses import replace
+from functools import partial
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -43,6 +45,12 @@ log = logging.getLogger(__name__)
 # broad rubber's friction peak 0.91 % apart, with both forms within 0.53 % of the BEM (2.0 % apart
 # and the dissipation form 3 % off with the trailing edge meshed like the rest of the contact)
 FORM_GAP = 0.01
+# The error estimate solves the problem again on the mesh's twin, with every size the contact sets (edge
+# elements, trailing zone, leading-edge layer) and the far elements this many times larger and the
+# block this many times smaller. An error of order p >= 1 in the size is then at most the change to
+# the twin (change / (2^p - 1)), which is the estimate; one above ESTIMATE_LIMIT warns
+TWIN_COARSEN = 2.0
+ESTIMATE_LIMIT = 0.01
 
 
 def _peak_memory_mib():
@@ -197,6 +205,7 @@ def rolling_cylinder(
     maxiter=100,
     keep_fields=False,
     vtk=None,
+    estimate=True,
     mesh="graded",
     condense="auto",
     layer_floor=0.01,
@@ -241,6 +250,12 @@ def rolling_cylinder(
     vtk : str or path, optional
         Write the fields to this ``.vtm`` (block and contact interface) or ``.vtu`` (block)
         file, with the metadata (:mod:`fem_reference.vtk`).
+    estimate : bool
+        Estimate the discretisation error of the friction in both forms from the same problem
+        solved on the mesh's coarse twin (:data:`TWIN_COARSEN` times every size the contact sets,
+        the far elements and the block likewise) and from the gap between the forms:
+        ``result.error_estimate``, and a warning where one exceeds :data:`ESTIMATE_LIMIT`.
+        ``False`` skips that solve.
     mesh : {"graded", "uniform"}
         ``"graded"`` (the default) grades the mesh geometrically toward the contact edges and the
         leading-edge layers (:mod:`fem_reference.graded`) and remeshes until the edges settle (at
@@ -296,7 +311,53 @@ def rolling_cylinder(
         material, terms, hs, out, npass = _run_graded(
             material, R, P, V, n_res, ratio, fold, domain, layer_floor, passes, kw
         )
+    if estimate and V > 0 and material.relaxation_times.size:
+        # a solid that does not dissipate has no friction to estimate: its value is round-off
+        _estimate(out, material, R, P, V, kw)
     return _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, vtk, t_start, given)
+
+
+def _coarser(ratio, length, least):
+    """The twin's growth ratio and block half-width: elements far from the contact, about
+    ``ratio - 1`` times their distance from it, TWIN_COARSEN times larger, and the block
+    TWIN_COARSEN times smaller (not below ``least``)."""
+    return 1 + TWIN_COARSEN * (ratio - 1), max(length / TWIN_COARSEN, least)
+
+
+FORMS = ("friction", "friction_dissipation")
+
+
+def _readings(out, R, P, V):
+    """Friction in the moment and the dissipation form of a solved mesh."""
+    power = float(out["ops"].weights @ out["diss"])
+    return {
+        "friction": float(out["sol"].lam @ out["xc"] / (R * P)),
+        "friction_dissipation": power / (P * V) if V > 0 else 0.0,
+    }
+
+
+def _estimate(out, material, R, P, V, kw):
+    """Solve the coarse twin of ``out``'s mesh and set ``out["estimate"]``: for either form of the
+    friction, the larger of its relative change to the twin and the gap between the two forms
+    (docs/theory.md §9)."""
+    t0 = time.perf_counter()
+    twin = out["twin"]
+    # the fine factor is not needed again: free it before the twin's comes
+    out["op"] = replace(
+        out["op"], factor=SimpleNamespace(name=out["op"].factor.name, nnz=getattr(out["op"].factor, "nnz", -1))
+    )
+    try:
+        coarse = _solve_mesh(twin["mesh"](), material, R, P, V, twin["band"], active_width=twin["active_width"], **kw)
+    except (_BandEdge, ConvergenceError, MemoryError) as err:
+        out["estimate"] = {}
+        out["estimate_failed"] = f"no error estimate: the coarse twin's solve failed ({str(err) or 'band edge'})"
+        return
+    finally:
+        out["timings"]["estimate"] = time.perf_counter() - t0
+    fine, twin_ = _readings(out, R, P, V), _readings(coarse, R, P, V)
+    # the two forms converge to one value: each is at least as uncertain as they are apart
+    gap = abs(fine["friction_dissipation"] / fine["friction"] - 1)
+    out["estimate"] = {q: max(abs(twin_[q] / fine[q] - 1), gap) for q in FORMS}
 
 
 def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
@@ -322,6 +383,14 @@ def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
     check_uniform_fits(hs.x, hs.y, available_memory())
     try:
         out = _solve_mesh(hs, material, R, P, V, (-xb, xb), active_width=a_inf, **kw)
+        r2, L2 = _coarser(ratio, L, 2 * xb)
+        out["twin"] = dict(
+            mesh=partial(
+                half_space_mesh, (-xb, xb), TWIN_COARSEN * h, x_range=(-L2, L2), depth=L2, core_depth=xb, ratio=r2
+            ),
+            band=(-xb, xb),
+            active_width=a_inf,
+        )
     except _BandEdge:
         raise ConvergenceError(
             "the contact reached the edge of the candidate band, or the solid penetrates "
@@ -358,6 +427,22 @@ def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, pass
             widen *= 2
             trail, lead = trail - widen * a_c, lead + widen * a_c
             continue
+        r2, L2 = _coarser(ratio, L, 4 * a_c)
+        out["twin"] = dict(
+            mesh=partial(
+                graded_half_space,
+                (trail, lead),
+                material,
+                V,
+                resolution=n_res,
+                length=L2,
+                ratio=r2,
+                layer_floor=layer_floor,
+                coarsen=TWIN_COARSEN,
+            ),
+            band=band,
+            active_width=0.8 * a_c,
+        )
         new_trail, new_lead = out["edges"]
         log.info(
             "graded pass %d: edges [%.6g, %.6g] -> [%.6g, %.6g], %d unknowns, %d candidate nodes, %s",
@@ -398,7 +483,8 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
     op, sol, ops = out["op"], out["sol"], out["ops"]
     xc, pres = out["xc"], out["pres"]
     trail, lead = out["edges"]
-    mu = float(sol.lam @ xc / (R * P))
+    readings = _readings(out, R, P, V)
+    mu, mu_diss = readings["friction"], readings["friction_dissipation"]
     power_fields = float(ops.weights @ out["diss"])
     lin, lin_limit = float(op.residual), float(op.residual_limit)
     problems = []
@@ -423,13 +509,22 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         )
     if "unsettled" in out:
         warnings += (out["unsettled"],)
-    mu_diss = power_fields / (P * V) if V > 0 else 0.0
     # an elastic solid (or every term folded) dissipates nothing, and its moment is round-off
     if V > 0 and taus.size and abs(mu_diss - mu) > FORM_GAP * abs(mu):
         warnings += (
             f"the moment and dissipation forms of the friction differ by {abs(mu_diss / mu - 1):.2%} (more than "
             f"{FORM_GAP:.0%}): the mesh does not resolve what dissipates; a higher resolution brings them together",
         )
+    estimate = out.get("estimate", {})
+    warnings += tuple(
+        f"{q.replace('_', ' ')} error estimate {e:.2%} exceeds {ESTIMATE_LIMIT:.0%} (its change on the mesh's "
+        "coarse twin, or the gap between the forms): a finer mesh (resolution) or a larger "
+        "block (domain) lowers it"
+        for q, e in estimate.items()
+        if e > ESTIMATE_LIMIT
+    )
+    if "estimate_failed" in out:
+        warnings += (out["estimate_failed"],)
     keep = keep_fields or vtk is not None
     fields = (
         dict(
@@ -492,6 +587,7 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         smallest_element=h_min,
         peak_resolved=resolved,
         warnings=warnings,
+        error_estimate=estimate,
     )
     if vtk is not None:
         from .vtk import write_fields

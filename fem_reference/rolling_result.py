@@ -99,7 +99,14 @@ class RollingResult:
     warnings : tuple of str
         What the result cannot be trusted for (an unresolved leading-edge layer, a graded mesh that did
         not settle on the contact edges within ``passes``, the two forms of the friction more than
-        :data:`~fem_reference.rolling.FORM_GAP` apart).
+        :data:`~fem_reference.rolling.FORM_GAP` apart, an error estimate above
+        :data:`~fem_reference.rolling.ESTIMATE_LIMIT`).
+    error_estimate : dict
+        ``friction`` and ``friction_dissipation``: estimates of their relative discretisation
+        errors, from the mesh's coarse twin and the gap between the two forms
+        (:func:`~fem_reference.rolling_cylinder`, ``estimate``); empty when not asked for, when the
+        twin's solve failed (``warnings`` says why) and for a solid that does not dissipate. The peak
+        pressure is judged by ``peak_resolved``.
     """
 
     x: np.ndarray
@@ -144,3 +151,4 @@ class RollingResult:
     smallest_element: float = float("nan")
     peak_resolved: bool = True
     warnings: tuple = ()
+    error_estimate: dict = field(default_factory=dict)
