@@ -102,11 +102,11 @@ class RollingResult:
         :data:`~fem_reference.rolling.FORM_GAP` apart, an error estimate above
         :data:`~fem_reference.rolling.ESTIMATE_LIMIT`).
     error_estimate : dict
-        ``friction`` and ``friction_dissipation``: estimates of their relative discretisation
-        errors, from the mesh's coarse twin and the gap between the two forms
-        (:func:`~fem_reference.rolling_cylinder`, ``estimate``); empty when not asked for, when the
-        twin's solve failed (``warnings`` says why) and for a solid that does not dissipate. The peak
-        pressure is judged by ``peak_resolved``.
+        Estimates of relative discretisation errors (:func:`~fem_reference.rolling_cylinder`,
+        ``estimate``): ``friction`` and ``friction_dissipation``, from the mesh's coarse twin and
+        the gap between the two forms; ``peak_pressure`` from the twin, where ``peak_resolved``.
+        Empty when not asked for, when the twin's solve failed (``warnings`` says why) and for a
+        solid that does not dissipate.
     """
 
     x: np.ndarray

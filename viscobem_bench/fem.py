@@ -65,6 +65,15 @@ def hunter_errors(r, h, length, name):
     }
 
 
+def estimates(r):
+    """The rolling result's error estimates of the friction in both forms (NaN where it has none)."""
+    nan = float("nan")
+    return {
+        "friction_estimate": r.error_estimate.get("friction", nan),
+        "dissipation_friction_estimate": r.error_estimate.get("friction_dissipation", nan),
+    }
+
+
 def rolling_case(material, ell, resolution, domain_factor, solver="auto", grading=1.3):
     from fem_reference import rolling_cylinder
     from validation.references import hunter
@@ -200,6 +209,7 @@ def _rubber_case(terms, ratio, speed, resolution):
         "kept": len(r.terms["kept"]),
         "friction_error": r.friction / ref["friction"] - 1,
         "dissipation_friction_error": r.friction_dissipation / ref["friction"] - 1,
+        **estimates(r),
         "peak_pressure_error": r.peak_pressure / ref["peak_pressure"] - 1,
         "leading_edge_error_over_width": (r.leading_edge - ref["leading_edge"]) / w,
         "trailing_edge_error_over_width": (r.trailing_edge - ref["trailing_edge"]) / w,
@@ -231,6 +241,8 @@ def rubber_rows(quick=True, fresh=None):
         "passes",
         "friction_error",
         "dissipation_friction_error",
+        "friction_estimate",
+        "dissipation_friction_estimate",
         "peak_pressure_error",
         "leading_edge_error_over_width",
         "trailing_edge_error_over_width",
@@ -294,6 +306,7 @@ def high_ratio_case(ratio, speed, resolution, grading, domain_factor=None):
         "elements": r.n_elements,
         "passes": r.passes,
         **hunter_errors(r, h, width, "width"),
+        **estimates(r),
         "success": r.success,
         "cpu_s": cpu,
         "wall_s": wall,
@@ -309,6 +322,8 @@ HIGH_RATIO_COLS = [
     "passes",
     "friction_error",
     "dissipation_friction_error",
+    "friction_estimate",
+    "dissipation_friction_estimate",
     "peak_pressure_error",
     "leading_edge_error_over_width",
     "trailing_edge_error_over_width",
@@ -404,6 +419,7 @@ def broad_case(name, speed, decades):
         "friction_bem": ref,
         "friction_error": r.friction / ref - 1,
         "dissipation_friction_error": r.friction_dissipation / ref - 1,
+        **estimates(r),
         "success": r.success,
         "cpu_s": cpu,
         "wall_s": wall,
@@ -422,6 +438,8 @@ BROAD_COLS = [
     "condensed",
     "friction_error",
     "dissipation_friction_error",
+    "friction_estimate",
+    "dissipation_friction_estimate",
     "success",
     "cpu_s",
     "wall_s",

@@ -3,6 +3,8 @@ either form on the mesh's coarse twin, and at least the gap between the two form
 
 import math
 
+import pytest
+
 from bem import Material
 from fem_reference import rolling, rolling_cylinder
 from validation.references import hunter
@@ -24,6 +26,7 @@ def _errors(r, h):
     return {
         "friction": abs(r.friction / h.friction - 1),
         "friction_dissipation": abs(r.friction_dissipation / h.friction - 1),
+        "peak_pressure": abs(r.peak_pressure / h.peak_pressure - 1),
     }
 
 
@@ -43,28 +46,39 @@ def test_estimate_covers_an_error_both_forms_share():
     assert set(r.error_estimate) == set(errors)
     for q, e in errors.items():
         assert e <= r.error_estimate[q], (q, e, r.error_estimate)
-    assert sum("error estimate" in w for w in r.warnings) == 2, r.warnings
+    for q, e in r.error_estimate.items():
+        warned = any(w.startswith(q.replace("_", " ") + " error estimate") for w in r.warnings)
+        assert warned == (e > rolling.ESTIMATE_LIMIT[q]), (q, r.warnings)
     assert "estimate" in r.timings
 
 
-def test_friction_estimate_is_at_least_the_gap_between_the_forms():
-    m = _standard_solid(10.0)
-    r = rolling_cylinder(m, radius=R, load=P, speed=_speed(m, 0.1), resolution=2)
+@pytest.mark.slow
+def test_the_gap_between_the_forms_bounds_the_estimate_from_below():
+    # Hunter's solid at E_inf/E0 = 10 two decades below its friction peak: the moment form is
+    # -0.45 % off, its change on the twin about 0.1 %, the forms 0.64 % apart; the gap is the
+    # estimate, and it covers the error
+    from viscobem_bench.fem import high_ratio_peak_speed
+
+    m = Material.standard_linear_solid(E0=2e6, E_inf=2e7, relaxation_time=0.01, nu=0.5)
+    V = 0.01 * high_ratio_peak_speed(10.0)
+    r = rolling_cylinder(m, radius=0.02, load=500.0, speed=V)
+    h = hunter.rolling_cylinder(m, radius=0.02, load=500.0, speed=V)
     gap = abs(r.friction_dissipation / r.friction - 1)
-    assert gap > 0
-    assert min(r.error_estimate["friction"], r.error_estimate["friction_dissipation"]) >= gap
+    assert r.error_estimate["friction"] == pytest.approx(gap, rel=1e-12)
+    assert abs(r.friction / h.friction - 1) <= r.error_estimate["friction"]
 
 
+@pytest.mark.slow
 def test_estimate_above_its_limit_warns(monkeypatch):
     m = _standard_solid(10.0)
     V = _speed(m, 1.0)
     r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=2)
     assert not any("error estimate" in w for w in r.warnings)
     smallest = min(r.error_estimate.values())
-    monkeypatch.setattr(rolling, "ESTIMATE_LIMIT", 0.5 * smallest)
+    monkeypatch.setattr(rolling, "ESTIMATE_LIMIT", dict.fromkeys(r.error_estimate, 0.5 * smallest))
     r = rolling_cylinder(m, radius=R, load=P, speed=V, resolution=2)
     notes = [w for w in r.warnings if "error estimate" in w]
-    assert len(notes) == 2, r.warnings
+    assert len(notes) == len(r.error_estimate) == 3, r.warnings
 
 
 def test_no_estimate_asked_for_nor_for_an_elastic_solid():

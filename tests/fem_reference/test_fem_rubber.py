@@ -205,12 +205,12 @@ def test_friction_forms_that_disagree_say_so(monkeypatch):
 
     m, R2, P2 = broad_material("equal20")
     monkeypatch.setattr(rolling, "FORM_GAP", 0.0)
-    r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6)
+    r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6, estimate=False)
     gap = abs(r.friction_dissipation / r.friction - 1)
     assert 1e-3 < gap < 0.05
     for limit, warned in ((0.5 * gap, True), (2.0 * gap, False)):
         monkeypatch.setattr(rolling, "FORM_GAP", limit)
-        r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6)
+        r = rolling_cylinder(m, radius=R2, load=P2, speed=6.31e-6, estimate=False)
         notes = [w for w in r.warnings if "forms of the friction differ" in w]
         assert len(notes) == warned and all(f"{gap:.2%}" in note for note in notes)
 
@@ -452,7 +452,7 @@ def test_pardiso_miss_falls_back_to_superlu_on_the_same_system_then_on_the_carri
     pytest.importorskip("pypardiso")
     monkeypatch.setattr(linsolve, "RESIDUAL_LIMIT", 1e-30)
     monkeypatch.setattr(linsolve, "FLOOR_FACTOR", 0.0)
-    kw = dict(radius=R, load=P, speed=1e-3, resolution=1, solver="auto")
+    kw = dict(radius=R, load=P, speed=1e-3, resolution=1, solver="auto", estimate=False)
     r = rolling_cylinder(rubber(2, 10.0), **kw)
     assert r.solver == "splu" and r.condensed and all(r.condensed)
     monkeypatch.setattr(rolling, "CONDENSED_FILL", 0.0)
