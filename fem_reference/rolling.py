@@ -51,9 +51,9 @@ FORM_GAP = 0.01
 # the twin (change / (2^p - 1)), which is the estimate. One above its limit warns: the accuracy a
 # reference must hold, 1 % in the friction, 2 % in the peak pressure (a nodal value at a steep layer)
 TWIN_COARSEN = 2.0
+ESTIMATE_LIMIT = {"friction": 0.01, "friction_dissipation": 0.01, "peak_pressure": 0.02}
 # Least block half-width of the graded mesh, in contact half-widths
 MIN_SPAN = 8
-ESTIMATE_LIMIT = {"friction": 0.01, "friction_dissipation": 0.01, "peak_pressure": 0.02}
 
 
 def _peak_memory_mib():
@@ -355,7 +355,7 @@ def _readings(out, R, P, V):
 def _estimate(out, material, R, P, V, mesh):
     """Solve the coarse twin of ``out``'s mesh and set ``out["estimate"]``: for either form of the
     friction, the larger of its relative change to the twin and the gap between the two forms; for
-    the peak pressure its change, where both meshes resolve it (docs/theory.md §9)."""
+    the peak pressure its change, where the result resolves the layer (docs/theory.md §9)."""
     t0 = time.perf_counter()
     # the fine factor is not needed again: free it before the twin's comes
     out["op"] = replace(
