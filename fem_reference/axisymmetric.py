@@ -53,9 +53,11 @@ class AxisymmetricStepper:
         Fixed displacement DOFs (set to zero).
     solver : str
         See :func:`fem_reference.linsolve.factorize`.
+    memory : float, optional
+        Most bytes SuperLU's factor may take.
     """
 
-    def __init__(self, ops, material, fixed, *, solver="auto"):
+    def __init__(self, ops, material, fixed, *, solver="auto", memory=None):
         self.ops, self.material = ops, material
         self.blocks = mixed_blocks(ops, material.nu)
         self.free = np.setdiff1d(np.arange(ops.B.shape[1]), fixed)
@@ -66,7 +68,7 @@ class AxisymmetricStepper:
         mb, f = self.blocks, self.free
         A = sp.bmat([[mb.K[f][:, f], -mb.G[f]], [-mb.G[f].T, -mb.c * mb.M]], format="csc")
         self.matrix = A.tocsr()
-        self.factor = factorize(A, solver)
+        self.factor = factorize(A, solver, memory=memory)
         # relative residual of the solve closest to its acceptance limit, and that limit
         self.residual, self.residual_limit = 0.0, RESIDUAL_LIMIT
         self._pending, self._hist = None, None

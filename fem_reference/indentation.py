@@ -27,6 +27,7 @@ from .axisymmetric import AxisymmetricStepper, fixed_dofs_axisymmetric
 from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
 from .indentation_mesh import indentation_mesh
 from .kinematics import quadrature_operators
+from .linsolve import solve_on_path, solver_path
 from .steady import stress_and_dissipation
 from .surface import top_surface
 
@@ -101,7 +102,10 @@ class IndentationResult:
         (:func:`~fem_reference.contact.complementarity_residual`: gaps of the displaced surface in
         and out of the active set, signs of the forces).
     solver : str
-        Linear solver that ran.
+        Linear solver of the result.
+    solver_path : tuple of dict
+        Every factorisation tried, in order, with its diagnostics and outcome
+        (:func:`~fem_reference.linsolve.solve_on_path`).
     error_estimate : dict
         ``contact_radius`` and ``approach``: relative error estimates at the output times, each the
         larger of :data:`SHIFT_FACTOR` times the change from a solve on the mesh shifted by half an
@@ -135,6 +139,7 @@ class IndentationResult:
     linear_residual_limit: float = float("nan")
     residual: float = float("nan")
     solver: str = ""
+    solver_path: tuple = ()
     error_estimate: dict = field(default_factory=dict)
     elastic_limits: dict = field(default_factory=dict)
     warnings: tuple = ()
@@ -291,6 +296,7 @@ def indentation(
         linear_residual_limit=float(run["limit"]),
         residual=run["worst"],
         solver=run["solver"],
+        solver_path=run["solver_path"],
         error_estimate=estimate,
         elastic_limits=limits,
         warnings=warnings,
@@ -310,92 +316,104 @@ def _creep_run(t_out, n_res, spd, *, material, R, P, band, L, grading, solver, m
     a0 = hertz_radius(material.E0, material.nu, R, P)
     hs = indentation_mesh(a_inf, a0, n_res, band=band, length=L, grading=grading, phase=phase)
     ops = quadrature_operators(hs.mesh, "axi")
-    stepper = AxisymmetricStepper(ops, material, fixed_dofs_axisymmetric(ops.basis), solver=solver)
-    top = top_surface(ops.basis, axisymmetric=True)
-    cand = top.x <= band * a0 * (1 + 1e-12)
-    rc = top.x[cand]
-    hc = -(rc**2) / (2 * R)
-    F = np.zeros((ops.basis.N, rc.size))
-    F[top.ydofs[cand], np.arange(rc.size)] = -1.0  # unit downward ring forces (N)
+    fixed = fixed_dofs_axisymmetric(ops.basis)
 
-    grid = time_grid(t_out, material.creep_times, spd)
-    lam_max = float(np.max(material.creep_times)) if material.creep_times.size else 0.0
-    t_relaxed = grid[-1] + RELAXED_STEP * lam_max
-    out = {k: [] for k in ("a", "d", "p", "it", "f")}
-    worst = 0.0
-    U = stepper.unit_response(F)  # glassy response to unit ring forces
-    w_unit = -U[top.ydofs]
-    t_prev, active, pres, snaps, limits = 0.0, rc <= a_inf, None, [], {}
-    for k, t in enumerate(np.append(grid, t_relaxed)):
-        e, u_hist = stepper.prepare(t - t_prev)
-        w = w_unit / e  # depression at all top nodes per unit force in this step
-        w0 = -u_hist[top.ydofs]
-        sol = solve_load_control(w[cand], hc, P, w0=w0[cand], active=active, maxiter=maxiter)
-        if sol.active[-1]:
-            raise ConvergenceError("the contact reached the edge of the candidate band; increase contact_band")
-        u_now = U @ sol.lam / e + u_hist
-        relaxed_step = k == grid.size
-        out_now = 0 if relaxed_step else np.count_nonzero(t_out == t)  # the grid holds the requested times
-        p_now = stepper.pressure(F @ sol.lam) if vtk is not None and out_now else None
-        stepper.commit(u_now)
-        # from the solution itself: the gaps of the displaced surface, the forces' signs
-        gap_now = -u_now[top.ydofs[cand]] + rc**2 / (2 * R) - sol.d
-        worst = max(worst, complementarity_residual(sol.lam, gap_now, sol.active, P, gap_scale(sol.d, hc[sol.active])))
-        active, t_prev = sol.active, t
-        step_pres = _nodal_pressure(rc, sol.lam, top.weights[cand])
-        if out_now or k == 0 or relaxed_step:
-            edge = _edge_from_gap(rc, sol.gap, sol.active)
-        if k == 0:  # the grid starts at t = 0+
-            limits["glassy"] = (edge, sol.d)
-        if relaxed_step:
-            limits["relaxed"] = (edge, sol.d)
-            continue
-        pres = step_pres
-        for _ in range(out_now):
-            out["a"].append(edge)
-            out["d"].append(sol.d)
-            out["p"].append(float(pres.max()))
-            out["it"].append(sol.iterations)
-            out["f"].append(float(sol.lam.sum()))
-            if vtk is not None:
-                _, stress, diss = stress_and_dissipation(ops, material, u_now, p_now, stepper.alpha)
-                snaps.append(
-                    dict(
-                        t=float(t),
-                        u=u_now,
-                        eps=stepper.eps,
-                        alpha=list(stepper.alpha),
-                        stress=stress,
-                        dissipation=diss,
-                        pressure=pres,
-                        approach=sol.d,
+    def build(step, memory):
+        return AxisymmetricStepper(ops, material, fixed, solver=step.solver, memory=memory)
+
+    def work(stepper, checkpoint):
+        top = top_surface(ops.basis, axisymmetric=True)
+        cand = top.x <= band * a0 * (1 + 1e-12)
+        rc = top.x[cand]
+        hc = -(rc**2) / (2 * R)
+        F = np.zeros((ops.basis.N, rc.size))
+        F[top.ydofs[cand], np.arange(rc.size)] = -1.0  # unit downward ring forces (N)
+
+        grid = time_grid(t_out, material.creep_times, spd)
+        lam_max = float(np.max(material.creep_times)) if material.creep_times.size else 0.0
+        t_relaxed = grid[-1] + RELAXED_STEP * lam_max
+        out = {k: [] for k in ("a", "d", "p", "it", "f")}
+        worst = 0.0
+        U = stepper.unit_response(F)  # glassy response to unit ring forces
+        checkpoint()
+        w_unit = -U[top.ydofs]
+        t_prev, active, pres, snaps, limits = 0.0, rc <= a_inf, None, [], {}
+        for k, t in enumerate(np.append(grid, t_relaxed)):
+            e, u_hist = stepper.prepare(t - t_prev)
+            w = w_unit / e  # depression at all top nodes per unit force in this step
+            w0 = -u_hist[top.ydofs]
+            sol = solve_load_control(w[cand], hc, P, w0=w0[cand], active=active, maxiter=maxiter)
+            if sol.active[-1]:
+                raise ConvergenceError("the contact reached the edge of the candidate band; increase contact_band")
+            u_now = U @ sol.lam / e + u_hist
+            relaxed_step = k == grid.size
+            out_now = 0 if relaxed_step else np.count_nonzero(t_out == t)  # the grid holds the requested times
+            p_now = stepper.pressure(F @ sol.lam) if vtk is not None and out_now else None
+            stepper.commit(u_now)
+            # from the solution itself: the gaps of the displaced surface, the forces' signs
+            gap_now = -u_now[top.ydofs[cand]] + rc**2 / (2 * R) - sol.d
+            worst = max(
+                worst, complementarity_residual(sol.lam, gap_now, sol.active, P, gap_scale(sol.d, hc[sol.active]))
+            )
+            active, t_prev = sol.active, t
+            step_pres = _nodal_pressure(rc, sol.lam, top.weights[cand])
+            if out_now or k == 0 or relaxed_step:
+                edge = _edge_from_gap(rc, sol.gap, sol.active)
+            if k == 0:  # the grid starts at t = 0+
+                limits["glassy"] = (edge, sol.d)
+            if relaxed_step:
+                limits["relaxed"] = (edge, sol.d)
+                continue
+            pres = step_pres
+            for _ in range(out_now):
+                out["a"].append(edge)
+                out["d"].append(sol.d)
+                out["p"].append(float(pres.max()))
+                out["it"].append(sol.iterations)
+                out["f"].append(float(sol.lam.sum()))
+                if vtk is not None:
+                    _, stress, diss = stress_and_dissipation(ops, material, u_now, p_now, stepper.alpha)
+                    snaps.append(
+                        dict(
+                            t=float(t),
+                            u=u_now,
+                            eps=stepper.eps,
+                            alpha=list(stepper.alpha),
+                            stress=stress,
+                            dissipation=diss,
+                            pressure=pres,
+                            approach=sol.d,
+                        )
                     )
-                )
-    if vtk is not None:
-        from .vtk import write_indentation
+        if vtk is not None:
+            from .vtk import write_indentation
 
-        write_indentation(vtk, snaps, ops, material, R, P, rc)
-    message = _message(stepper.residual, stepper.residual_limit, worst)
-    return dict(
-        a=np.array(out["a"]),
-        d=np.array(out["d"]),
-        p=np.array(out["p"]),
-        it=np.array(out["it"], dtype=int),
-        f=np.array(out["f"]),
-        r=rc,
-        pressure=pres,
-        mesh=hs,
-        n_unknowns=stepper.n_unknowns,
-        n_steps=grid.size,
-        linear=stepper.residual,
-        limit=stepper.residual_limit,
-        worst=worst,
-        solver=stepper.factor.name,
-        limits=limits,
-        success=message == CONVERGED,
-        message=message,
-        wall=time.perf_counter() - t_start,
-    )
+            write_indentation(vtk, snaps, ops, material, R, P, rc)
+        message = _message(stepper.residual, stepper.residual_limit, worst)
+        return dict(
+            a=np.array(out["a"]),
+            d=np.array(out["d"]),
+            p=np.array(out["p"]),
+            it=np.array(out["it"], dtype=int),
+            f=np.array(out["f"]),
+            r=rc,
+            pressure=pres,
+            mesh=hs,
+            n_unknowns=stepper.n_unknowns,
+            n_steps=grid.size,
+            linear=stepper.residual,
+            limit=stepper.residual_limit,
+            worst=worst,
+            solver=stepper.factor.name,
+            limits=limits,
+            success=message == CONVERGED,
+            message=message,
+            wall=time.perf_counter() - t_start,
+        )
+
+    run, report = solve_on_path(solver_path(solver), build, work)
+    run["solver_path"] = tuple(report)
+    return run
 
 
 def _edge_from_gap(r, gap, active):

@@ -1,8 +1,11 @@
-"""Sparse direct factorisation of the (non-symmetric) FEM operators.
+"""Sparse direct factorisation of the (non-symmetric) FEM operators, and the one policy that
+picks it.
 
-``scipy.sparse.linalg.splu`` (SuperLU) is the default and the fallback. ``pypardiso``
-(MKL PARDISO, from PyPI) is used when asked for with ``solver="pardiso"`` and installed;
-``solver="auto"`` picks it when it is importable. See ``viscobem_bench/fem.py`` for timings.
+``scipy.sparse.linalg.splu`` (SuperLU) and ``pypardiso`` (MKL PARDISO, from PyPI, optional)
+factor the systems. :func:`solver_path` is the only place that decides which factorisations a
+system gets and in what order; :func:`solve_on_path` runs them until the solves meet their
+residual limit and reports every step (the ``solver_path`` of each FEM result). See
+``viscobem_bench/fem.py`` for timings.
 """
 
 from __future__ import annotations
@@ -11,14 +14,25 @@ import contextlib
 import logging
 import os
 import threading
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from bem.errors import InputError
+from bem.errors import ConvergenceError, InputError
 
-__all__ = ["factorize", "SOLVERS", "relative_residual", "residual_limit", "solve_refined", "RESIDUAL_LIMIT"]
+__all__ = [
+    "factorize",
+    "SOLVERS",
+    "Step",
+    "solver_path",
+    "solve_on_path",
+    "relative_residual",
+    "residual_limit",
+    "solve_refined",
+    "RESIDUAL_LIMIT",
+]
 
 RESIDUAL_LIMIT = 1e-8  # largest accepted relative residual of a linear solve (see residual_limit)
 # refinement stops at this residual: a hundredth of the limit, so that the force error of an
@@ -46,6 +60,12 @@ PROBE_COLUMNS = 4
 
 # SuperLU's factor may take this share of the memory the system reports available when it starts
 MEMORY_SHARE = 0.9
+# SuperLU's factor of a system PARDISO's solves missed on may take this many times PARDISO's entries
+# (8 bytes of value and 8 of indices and work each) before the path's next step is taken instead.
+# Measured: 2.6 times on a 10-term rubber two decades above its friction peak (87 million entries,
+# 19 s), where the carried form took 14 GiB; on broad spectra near their peak the condensed bands
+# fill SuperLU's factor to 12 GiB, and the carried form's local couplings do not
+CONDENSED_FILL = 8.0
 
 SOLVERS = ("auto", "splu", "pardiso")
 log = logging.getLogger(__name__)
@@ -154,6 +174,9 @@ class _SuperLU:
     def solve(self, b):
         return self._lu.solve(np.asarray(b, dtype=float))
 
+    def diagnostics(self):
+        return {"solver": self.name, "factor_nonzeros": self.nnz}
+
 
 class _Pardiso:
     """MKL PARDISO (METIS ordering, weighted matching and scaling). The saddle-point
@@ -186,6 +209,14 @@ class _Pardiso:
         x = self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
         self.refinement_steps = int(self._solver.get_iparm(7))
         return x
+
+    def diagnostics(self):
+        return {
+            "solver": self.name,
+            "factor_nonzeros": self.nnz,
+            "perturbed_pivots": int(self._solver.get_iparm(14)),
+            "deflated_directions": self.deflated,
+        }
 
     def slow_to_refine(self, b):
         """True if PARDISO's own refinement of the solve with ``b`` (one column) took more than
@@ -281,7 +312,8 @@ def factorize(A, solver="auto", memory=None):
     ----------
     A : scipy.sparse matrix
     solver : {"auto", "splu", "pardiso"}
-        ``"auto"`` uses PARDISO if ``pypardiso`` is importable, else SuperLU.
+        ``"auto"``: the first step of :func:`solver_path` (PARDISO if ``pypardiso`` is importable,
+        else SuperLU).
     memory : float, optional
         Most bytes SuperLU's factorisation may add to the process (``MemoryError`` beyond); at
         most :data:`MEMORY_SHARE` of the memory available in any case.
@@ -290,10 +322,135 @@ def factorize(A, solver="auto", memory=None):
         raise InputError(f"solver must be one of {SOLVERS}, got {solver!r}")
     if solver == "pardiso" and not pardiso_available():
         raise InputError("solver='pardiso' needs the optional package pypardiso (pip install pypardiso)")
-    use_pardiso = solver == "pardiso" or (solver == "auto" and pardiso_available())
-    fac = _Pardiso(A) if use_pardiso else _SuperLU(A, memory=memory)
+    fac = _Pardiso(A) if solver_path(solver)[0].solver == "pardiso" else _SuperLU(A, memory=memory)
     log.debug("factorised %d unknowns with %s", A.shape[0], fac.name)
     return fac
+
+
+@dataclass(frozen=True)
+class Step:
+    """One factorisation of a path: ``solver`` (``"pardiso"`` or ``"splu"``) on the system as asked,
+    or with every viscous term carried by its outflow values (``carried``); ``fill``: SuperLU's
+    factor may take at most this many times the previous step's factor entries."""
+
+    solver: str
+    carried: bool = False
+    fill: float | None = None
+
+    def __str__(self):
+        name = {"splu": "SuperLU", "pardiso": "PARDISO"}[self.solver]
+        return name + (", carrying every term by its outflow values" if self.carried else "")
+
+
+def solver_path(solver="auto", *, carries=False, condenses=False):
+    """The factorisations a FEM system gets, in order: the one place that picks its linear algebra.
+
+    ``"splu"`` or ``"pardiso"`` gets that factorisation alone, and a solve that misses its limit
+    is reported, not replaced. ``"auto"`` gets SuperLU where ``pypardiso`` is not importable or
+    the system carries a term (PARDISO's static pivoting leaves the carried form's solve off:
+    first residual 1 on a 10-term rubber, 2 on the quick validation's solids, where SuperLU's
+    partial pivoting reaches 1e-9 and, on a 3-term rubber, factors faster than the condensed
+    form). Otherwise it gets PARDISO; where its solves miss their limit even deflated, SuperLU on
+    the same system within :data:`CONDENSED_FILL` times PARDISO's entries; and beyond that,
+    SuperLU on the form that carries every term (whose couplings stay local).
+
+    Parameters
+    ----------
+    solver : {"auto", "splu", "pardiso"}
+        What the caller asked for.
+    carries : bool
+        The system as asked carries some term by its outflow values.
+    condenses : bool
+        The system as asked condenses some term (so a form carrying every term exists).
+
+    Returns
+    -------
+    tuple of Step
+    """
+    if solver not in SOLVERS:
+        raise InputError(f"solver must be one of {SOLVERS}, got {solver!r}")
+    if solver != "auto":
+        return (Step(solver),)
+    if carries or not pardiso_available():
+        return (Step("splu"),)
+    path = (Step("pardiso"), Step("splu", fill=CONDENSED_FILL))
+    return path + (Step("splu", carried=True),) if condenses else path
+
+
+class _Missed(Exception):
+    """The step's solves missed their limit and a later step will take over."""
+
+
+def solve_on_path(path, build, work):
+    """Run ``work`` on the operator of each step of ``path`` until its solves meet their limit.
+
+    The last step's result is returned even if it missed (the caller reports that). A fallback
+    that cannot be factored raises ``ConvergenceError`` naming the miss it was to mend; a first
+    step that cannot be factored raises as it did.
+
+    Parameters
+    ----------
+    path : sequence of Step
+        From :func:`solver_path`.
+    build : callable
+        ``build(step, memory)`` returns an operator with ``factor`` and the ``residual`` and
+        ``residual_limit`` of its solves so far; ``memory`` (bytes, or None) bounds SuperLU's factor.
+    work : callable
+        ``work(op, checkpoint)`` solves with ``op`` and returns its result; it calls
+        ``checkpoint()`` after its costliest solves, so that a step that missed is left before the
+        rest of its work is done.
+
+    Returns
+    -------
+    result : object
+        What ``work`` returned on the last step run.
+    report : list of dict
+        Every step tried: ``solver``, ``form``, its factor's diagnostics, its worst ``residual``
+        against its ``limit``, and its ``outcome`` ("met", "missed", or why it could not run).
+    """
+    report, missed, nnz = [], None, -1
+    for i, step in enumerate(path):
+        last = i == len(path) - 1
+        entry = {"solver": step.solver, "form": "carried" if step.carried else "as asked"}
+        report.append(entry)
+        memory = None
+        if step.fill is not None:
+            if nnz <= 0:  # the previous factor did not say its size: no budget to give
+                entry["outcome"] = "skipped: the factor before it did not report its size"
+                continue
+            memory = step.fill * 16.0 * nnz
+        try:
+            op = build(step, memory)
+        except MemoryError as err:
+            if missed is None:
+                raise
+            entry["outcome"] = f"memory: {err}"
+            if last:
+                raise ConvergenceError(f"{missed}, and the fallback to SuperLU failed: {err}") from err
+            log.warning("%s; factoring with %s", err, path[i + 1])
+            continue
+
+        def checkpoint(op=op, last=last):
+            if not last and op.residual > op.residual_limit:
+                raise _Missed
+
+        try:
+            result = work(op, checkpoint)
+            checkpoint()
+        except _Missed:
+            result = None
+        diagnostics = getattr(op.factor, "diagnostics", None)
+        entry.update(diagnostics() if diagnostics else {})
+        entry.update(residual=float(op.residual), limit=float(op.residual_limit))
+        if result is not None:
+            entry["outcome"] = "met" if op.residual <= op.residual_limit else "missed"
+            return result, report
+        entry["outcome"] = "missed"
+        missed = f"{op.factor.name} solve residual {op.residual:.2e} > {op.residual_limit:.1e}"
+        log.warning("%s: factoring with %s", missed, path[i + 1])
+        nnz = int(getattr(op.factor, "nnz", -1))
+        op = checkpoint = None  # the missed factor (and its deflation) goes before the next one's fill comes
+    raise ConvergenceError(f"{missed}, and no fallback could run")  # every later step was skipped
 
 
 def relative_residual(A, x, b, n_equilibrium=None):

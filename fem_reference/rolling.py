@@ -27,11 +27,11 @@ from bem.errors import ConvergenceError, InputError
 from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
 from .graded import LAYER_ELEMENTS, SINGLE_TERM_FLOOR, fold_terms, graded_half_space, initial_edges
 from .kinematics import quadrature_operators
-from .linsolve import RESIDUAL_LIMIT, available_memory, factorize
+from .linsolve import available_memory, solve_on_path
 from .mesh import half_space_mesh
 from .rolling_inputs import check_inputs, check_uniform_fits, domain_size, hertz_half_width
 from .rolling_result import RollingResult
-from .steady import steady_operator, stress_and_dissipation
+from .steady import condensed_terms, steady_operator, stress_and_dissipation, system_path
 from .surface import contact_edges, top_surface
 
 __all__ = ["RollingResult", "rolling_cylinder", "domain_size"]
@@ -83,63 +83,38 @@ def _flexibility(op, top_dofs, ydofs):
     return w
 
 
-# SuperLU's factor of the same (condensed) system may take this many times the entries of PARDISO's
-# (8 bytes of value and 8 of indices and work each) before the carried form is taken instead.
-# Measured: 2.6 times on a 10-term rubber two decades above its friction peak (87 million entries,
-# 19 s), where the carried form took 14 GiB; on broad spectra near their peak the condensed bands
-# fill SuperLU's factor to 12 GiB, and the carried form's local couplings do not
-CONDENSED_FILL = 8.0
-
-
-def _missed(op, solver):
-    """What PARDISO's solves with ``op`` missed (``solver="auto"``), or None where they met their limit."""
-    if solver != "auto" or op.factor.name == "splu" or op.residual <= op.residual_limit:
-        return None
-    missed = f"{op.factor.name} solve residual {op.residual:.2e} > {op.residual_limit:.1e}"
-    log.warning("%s: factoring with SuperLU", missed)
-    return missed
-
-
-def _superlu_operator(ops, material, V, op, nnz, missed):
-    """The operator ``op`` (its factor dropped), whose PARDISO solve missed its residual with a
-    factor of ``nnz`` entries, factored with SuperLU.
-
-    PARDISO perturbs small pivots of the saddle-point system; where even its deflated solve
-    (:meth:`~fem_reference.linsolve._Pardiso.deflate`) misses, SuperLU's partial pivoting solves it.
-    First the same system, if its factor stays within :data:`CONDENSED_FILL` times PARDISO's; else
-    every term carried by its outflow values.
-    """
-    budget = CONDENSED_FILL * 16.0 * nnz  # nnz is -1 where PARDISO does not report it
-    if budget > 0:
-        try:
-            fac = factorize(op.matrix, "splu", memory=budget)
-            return replace(op, factor=fac, residual=0.0, residual_limit=RESIDUAL_LIMIT)
-        except MemoryError as err:
-            log.warning("%s; carrying every term by its outflow values", err)
-    op = None
-    try:
-        return steady_operator(ops, material, V, solver="splu", condense=False)
-    except MemoryError as err:
-        raise ConvergenceError(f"{missed}, and the fallback to SuperLU failed: {err}") from err
-
-
 def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, active_width):
-    """Factor, condense onto the candidate nodes, solve the contact and the fields."""
+    """Factor (along the system's solver path), condense onto the candidate nodes, solve the
+    contact and the fields."""
     t0 = time.perf_counter()
     ops = quadrature_operators(hs.mesh, "plane")
-    op = steady_operator(ops, material, V, solver=solver, condense=condense)
-    t1 = time.perf_counter()
-
+    cmask = condensed_terms(ops, material, V, condense)
     top = top_surface(ops.basis)
     cand = (top.x >= band[0] - 1e-12 * abs(band[0])) & (top.x <= band[1] + 1e-12 * abs(band[1]))
+    setup = time.perf_counter() - t0
+
+    def build(step, memory):
+        form = False if step.carried else cmask
+        return steady_operator(ops, material, V, solver=step.solver, condense=form, memory=memory)
+
+    def work(op, checkpoint):
+        return _contact_and_fields(op, ops, top, cand, R, P, band, active_width, maxiter, checkpoint)
+
+    out, report = solve_on_path(system_path(material, V, cmask, solver), build, work)
+    out.update(mesh=hs, ops=ops, solver_path=tuple(report))
+    out["timings"]["assemble"] += setup
+    out["timings"]["assemble_factor"] += setup
+    return out
+
+
+def _contact_and_fields(op, ops, top, cand, R, P, band, active_width, maxiter, checkpoint):
+    """The flexibility of the candidate nodes, the contact under load ``P`` and the fields, with the
+    factored operator ``op``; ``checkpoint()`` after the flexibility leaves a factor whose solves
+    missed before the contact is solved with them."""
+    t1 = time.perf_counter()
     ydofs = top.ydofs[cand]
     w_top = _flexibility(op, top.ydofs, ydofs)
-    missed = _missed(op, solver)
-    if missed:
-        w_top, nnz = None, op.factor.nnz
-        op = replace(op, factor=None)  # PARDISO's factor and its deflation go before SuperLU's fill comes
-        op = _superlu_operator(ops, material, V, op, nnz, missed)
-        w_top = _flexibility(op, top.ydofs, ydofs)
+    checkpoint()
     t2 = time.perf_counter()
 
     xc = top.x[cand]
@@ -157,25 +132,17 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     f = np.zeros(ops.basis.N)
     f[ydofs] = -sol.lam  # the contact forces on the body
     u, p, alpha = op.solve(f)
-    missed = _missed(op, solver)
-    if missed:
-        # the flexibility's solves met the limit, so the contact stands; only this solve is redone
-        nnz = op.factor.nnz
-        op = replace(op, factor=None)
-        op = _superlu_operator(ops, material, V, op, nnz, missed)
-        u, p, alpha = op.solve(f)
     # the contact condition as the field solve satisfies it: gaps from the displaced surface
     gap_field = -u[ydofs] + xc**2 / (2 * R) - sol.d
     residual = complementarity_residual(sol.lam, gap_field, sol.active, P, gap_scale(sol.d, hc[sol.active]))
-    eps, sigma, diss = stress_and_dissipation(ops, material, u, p, alpha)
+    eps, sigma, diss = stress_and_dissipation(ops, op.material, u, p, alpha)
     t4 = time.perf_counter()
     pres = sol.lam / top.weights[cand]
     lead, trail = contact_edges(xc, pres, sol.active)
-    timings = dict(op.timings, assemble_factor=t1 - t0, flexibility=t2 - t1, contact=t3 - t2, fields=t4 - t3)
-    timings["assemble"] = t1 - t0 - op.timings["factor"]
+    # the operator's own assembly and factorisation (the caller adds its setup)
+    timings = dict(op.timings, flexibility=t2 - t1, contact=t3 - t2, fields=t4 - t3)
+    timings["assemble_factor"] = timings["assemble"] + timings["factor"]
     return dict(
-        mesh=hs,
-        ops=ops,
         op=op,
         sol=sol,
         residual=residual,
@@ -247,6 +214,9 @@ def rolling_cylinder(
         relaxed one at the smallest element and over the block). The terms used are in
         ``RollingResult.material`` and ``RollingResult.terms``.
     solver : {"auto", "splu", "pardiso"}
+        The factorisations tried, in order (:func:`fem_reference.linsolve.solver_path`):
+        ``"auto"`` takes PARDISO where it is installed and SuperLU where its solves miss their
+        residual; an explicit one runs alone. ``result.solver_path`` reports each step.
     maxiter : int
         Active-set iteration limit.
     keep_fields : bool
@@ -590,6 +560,7 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
         linear_residual=lin,
         linear_residual_limit=lin_limit,
         solver=op.factor.name,
+        solver_path=out["solver_path"],
         mesh=mesh,
         passes=npass,
         terms=terms,

@@ -72,7 +72,13 @@ class RollingResult:
         Its limit: 1e-8, or ten times the round-off floor of the force balance where that is
         higher (:func:`~fem_reference.linsolve.residual_limit`).
     solver : str
-        Linear solver that ran (``splu`` or ``pardiso``).
+        Linear solver of the result (``splu`` or ``pardiso``).
+    solver_path : tuple of dict
+        Every factorisation tried on the last mesh, in order
+        (:func:`~fem_reference.linsolve.solve_on_path`): ``solver``, ``form`` (``"as asked"`` or
+        ``"carried"``), the factor's diagnostics (``factor_nonzeros``; PARDISO's
+        ``perturbed_pivots`` and ``deflated_directions``), the worst ``residual`` against its
+        ``limit``, and the ``outcome``.
     mesh : str
         ``uniform`` or ``graded``.
     passes : int
@@ -139,6 +145,7 @@ class RollingResult:
     linear_residual: float = float("nan")
     linear_residual_limit: float = float("nan")
     solver: str = ""
+    solver_path: tuple = ()
     mesh: str = "uniform"
     passes: int = 1
     terms: dict = field(default_factory=dict)

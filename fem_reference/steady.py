@@ -45,10 +45,10 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .kinematics import deviatoric_matrix, inverse_bulk_modulus, mixed_blocks, trace_vector
-from .linsolve import RESIDUAL_LIMIT, factorize, solve_refined
+from .linsolve import RESIDUAL_LIMIT, factorize, solve_refined, solver_path
 from .memory import condensed_memory, memory_operators, memory_reach, state_operators
 
-__all__ = ["SteadyOperator", "steady_operator", "condensable", "viscous_strain"]
+__all__ = ["SteadyOperator", "steady_operator", "condensable", "condensed_terms", "system_path", "viscous_strain"]
 
 
 @dataclass
@@ -162,7 +162,27 @@ def condensable(ops, material, speed, max_reach=MAX_REACH):
     )
 
 
-def steady_operator(ops, material, speed, *, solver="auto", condense=False):
+def condensed_terms(ops, material, speed, condense):
+    """Mask of the terms whose viscous strains are eliminated: all with ``True``, none with
+    ``False``, those of :func:`condensable` with ``"auto"``, or the given mask; never a term that
+    does not move (``V tau_k = 0``)."""
+    if isinstance(condense, str):
+        if condense != "auto":
+            raise ValueError(f"condense must be a bool, 'auto' or a mask, got {condense!r}")
+        cmask = condensable(ops, material, speed)
+    else:
+        cmask = np.broadcast_to(np.asarray(condense, dtype=bool), (material.relaxation_times.size,)).copy()
+    return cmask & (speed * material.relaxation_times > 0)
+
+
+def system_path(material, speed, cmask, solver="auto"):
+    """The :func:`~fem_reference.linsolve.solver_path` of the steady system whose condensed terms
+    are ``cmask``."""
+    moving = speed * material.relaxation_times > 0
+    return solver_path(solver, carries=bool(np.any(moving & ~cmask)), condenses=bool(np.any(cmask)))
+
+
+def steady_operator(ops, material, speed, *, solver="auto", condense=False, memory=None):
     """Assemble and factor the steady operator (see module docstring).
 
     Parameters
@@ -173,26 +193,21 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False):
     speed : float
         Rolling speed ``V`` (m/s), ``>= 0``.
     solver : str
-        See :func:`fem_reference.linsolve.factorize`; ``"auto"`` takes SuperLU where a term is
-        carried by its outflow values.
+        See :func:`fem_reference.linsolve.factorize`; ``"auto"`` is the first step of the system's
+        :func:`system_path`.
     condense : bool, "auto" or array of bool
         Eliminate the viscous strains of these terms (all with ``True``, those of
         :func:`condensable` with ``"auto"``) through their truncated memory; the others are
         carried by their elements' outflow values.
+    memory : float, optional
+        Most bytes SuperLU's factor may take (:func:`~fem_reference.linsolve.factorize`).
     """
     t0 = time.perf_counter()
     mb = mixed_blocks(ops, material.nu)
     M, T, BtWd, c = mb.M, mb.T, mb.BtWd, mb.c
     B = ops.B
     g = material.moduli / material.E_inf
-    ntau = g.size
-    if isinstance(condense, str):
-        if condense != "auto":
-            raise ValueError(f"condense must be a bool, 'auto' or a mask, got {condense!r}")
-        cmask = condensable(ops, material, speed)
-    else:
-        cmask = np.broadcast_to(np.asarray(condense, dtype=bool), (ntau,)).copy()
-    cmask &= speed * material.relaxation_times > 0
+    cmask = condensed_terms(ops, material, speed, condense)
 
     free = np.setdiff1d(np.arange(B.shape[1]), _fixed_dofs(ops.basis))
     Bf = B[:, free]
@@ -222,12 +237,7 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False):
         blocks.append(row)
     A = sp.bmat(blocks, format="csc")
     t1 = time.perf_counter()
-    if solver == "auto" and chains:
-        # PARDISO's static pivoting leaves the carried form's solve off (measured: first residual
-        # 1 on a 10-term rubber, 2 on the quick validation's solids, where SuperLU's partial
-        # pivoting reaches 1e-9 and, on a 3-term rubber, factors faster than the condensed form)
-        solver = "splu"
-    fac = factorize(A, solver)
+    fac = factorize(A, system_path(material, speed, cmask, solver)[0].solver, memory=memory)
     t2 = time.perf_counter()
     return SteadyOperator(
         ops,

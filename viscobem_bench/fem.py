@@ -65,6 +65,12 @@ def hunter_errors(r, h, length, name):
     }
 
 
+def path(r):
+    """The factorisations a rolling result took, in order (``carried``: every term carried)."""
+    steps = (s["solver"] + (" carried" if s["form"] == "carried" else "") for s in r.solver_path)
+    return {"solver_path": " > ".join(steps)}
+
+
 def estimates(r):
     """The rolling result's error estimates of the friction in both forms (NaN where it has none)."""
     nan = float("nan")
@@ -305,6 +311,7 @@ def high_ratio_case(ratio, speed, resolution, grading, domain_factor=None):
         "unknowns": r.n_unknowns,
         "elements": r.n_elements,
         "passes": r.passes,
+        **path(r),
         **hunter_errors(r, h, width, "width"),
         **estimates(r),
         "success": r.success,
@@ -320,6 +327,7 @@ HIGH_RATIO_COLS = [
     "domain_factor",
     "unknowns",
     "passes",
+    "solver_path",
     "friction_error",
     "dissipation_friction_error",
     "friction_estimate",
@@ -412,7 +420,7 @@ def broad_case(name, speed, decades):
         "unknowns": r.n_unknowns,
         "nonzeros": r.n_nonzeros,
         "factor_nonzeros": r.factor_nonzeros,
-        "solver": r.solver,
+        **path(r),
         "passes": r.passes,
         "kept": len(r.terms["kept"]),
         "condensed": sum(r.condensed),
@@ -434,6 +442,7 @@ BROAD_COLS = [
     "unknowns",
     "nonzeros",
     "factor_nonzeros",
+    "solver_path",
     "kept",
     "condensed",
     "friction_error",

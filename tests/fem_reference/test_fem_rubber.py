@@ -444,20 +444,24 @@ def test_pardiso_miss_with_no_memory_for_the_superlu_fallback_is_an_error(monkey
 
 @pytest.mark.pardiso
 def test_pardiso_miss_falls_back_to_superlu_on_the_same_system_then_on_the_carried_one(monkeypatch):
-    # SuperLU factors the condensed system PARDISO missed on where its factor stays within
-    # CONDENSED_FILL times PARDISO's entries; with no room for that, every term is carried instead.
-    # Forced by a limit no solve can reach (the results then say so; only the path is tested here)
-    from fem_reference import linsolve, rolling
+    # The "auto" path on real PARDISO: after a miss, SuperLU on the condensed system within
+    # CONDENSED_FILL times PARDISO's entries, then SuperLU on the carried form. Forced by a limit no
+    # solve can reach, so every step misses and the last one's result says so (only the path is
+    # tested here); with no room for SuperLU's factor of the condensed system, that step is skipped
+    from fem_reference import linsolve
 
     pytest.importorskip("pypardiso")
     monkeypatch.setattr(linsolve, "RESIDUAL_LIMIT", 1e-30)
     monkeypatch.setattr(linsolve, "FLOOR_FACTOR", 0.0)
     kw = dict(radius=R, load=P, speed=1e-3, resolution=1, solver="auto", estimate=False)
     r = rolling_cylinder(rubber(2, 10.0), **kw)
-    assert r.solver == "splu" and r.condensed and all(r.condensed)
-    monkeypatch.setattr(rolling, "CONDENSED_FILL", 0.0)
+    steps = [(s["solver"], s["form"], s["outcome"][:6]) for s in r.solver_path]
+    assert steps == [("pardiso", "as asked", "missed"), ("splu", "as asked", "missed"), ("splu", "carried", "missed")]
+    assert r.solver_path[0]["perturbed_pivots"] >= 0 and r.solver_path[0]["factor_nonzeros"] > 0
+    assert r.solver == "splu" and not any(r.condensed) and not r.success
+    monkeypatch.setattr(linsolve, "CONDENSED_FILL", 0.0)
     r = rolling_cylinder(rubber(2, 10.0), **kw)
-    assert r.solver == "splu" and r.condensed and not any(r.condensed)
+    assert [s["outcome"][:6] for s in r.solver_path] == ["missed", "memory", "missed"]
 
 
 @pytest.mark.pardiso
