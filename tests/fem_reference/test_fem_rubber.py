@@ -308,19 +308,6 @@ def _broad_rubber_against_the_bem(name, V):
 
 
 @pytest.mark.slow
-def test_broad_spectrum_rubber_at_friction_peak():
-    # 10-term rubber, E_inf/E0 = 500, log-normal weights (one decade wide) over tau =
-    # 10^-5.5..10^-0.5 s, E0 = 1.5 MPa, R = 15 mm, P = 1000 N/m, at the isolated BEM's friction
-    # peak (V = 9.79e-4 m/s), default solver. Measured against the BEM on 2^13 points: friction
-    # -0.117 % (moment form) and +0.217 % (dissipation form); tolerance 1 % (the FEM's target,
-    # margins 8.5x and 4.6x). 18,018 unknowns, 7.1M entries, 24M factor entries, 64 s CPU and
-    # 2.7 GiB peak resident memory in a fresh process (memory that grew with the spectrum ran out
-    # at 16 GiB here).
-    r = _broad_rubber_against_the_bem("lognormal10", 9.79e-4)
-    assert len(r.terms["kept"]) == 10
-
-
-@pytest.mark.slow
 def test_broad_spectrum_rubber_two_decades_above_its_friction_peak():
     # 20 terms, E_inf/E0 = 1000 (equal weights over tau = 1e-5..1e-1 s, E0 = 1 MPa, R = 20 mm,
     # P = 1500 N/m), at 100 times the BEM's friction peak: the block is 30 V lambda_max = 24.7 m
@@ -330,6 +317,22 @@ def test_broad_spectrum_rubber_two_decades_above_its_friction_peak():
     # and +0.190 % (dissipation form), PARDISO and SuperLU alike; tolerance 1 % (margins 33x and 5x).
     r = _broad_rubber_against_the_bem("equal20", 6.31e-2)
     assert not r.peak_resolved and r.smallest_element > 10 * r.thinnest_layer
+
+
+@pytest.mark.slow
+def test_glass_transition_rubber_at_its_friction_peak():
+    # 18 terms, E_inf/E0 = 2000, weights tau^-0.3 rising toward short times over tau = 1e-9..1e2 s
+    # (a glass transition), E0 = 1 MPa, R = 20 mm, P = 1000 N/m, at the BEM's friction peak
+    # (2.0e-4 m/s), the default call. On the uniform mesh PARDISO missed its residual here and both
+    # SuperLU fallbacks ran out of memory (9.3 GiB, ConvergenceError after 14 minutes). Measured
+    # against the BEM on 2^13 points with SuperLU (no pypardiso, as in CI's slow step): -0.030 %
+    # (moment form) and +0.010 % (dissipation form), estimates 0.155 % and 0.040 %; 24,882
+    # unknowns (16 of 18 terms kept), 112 M factor entries, 223 s CPU, 5.7 GiB; with PARDISO 3.7 GiB.
+    # Tolerance 1 % (the FEM's target, margins 33x and 100x); its estimates stay under their 1 %
+    # limit, and the leading-edge layer of the 1 ns term (4e-12 m) is reported unresolved
+    r = _broad_rubber_against_the_bem("glass18", 2.0e-4)
+    assert max(r.error_estimate["friction"], r.error_estimate["friction_dissipation"]) < 0.01
+    assert not r.peak_resolved and len(r.warnings) == 1, r.warnings
 
 
 @pytest.mark.pardiso
