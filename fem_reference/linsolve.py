@@ -377,6 +377,12 @@ def solver_path(solver="auto", *, carries=False, condenses=False):
     return path + (Step("splu", carried=True),) if condenses else path
 
 
+def _diagnostics(factor):
+    """The factor's own report (an empty one from a factor that gives none). No reference to the
+    factor outlives the call: a missed factor must be freed before the next one is made."""
+    return factor.diagnostics() if hasattr(factor, "diagnostics") else {}
+
+
 class _Missed(Exception):
     """The step's solves missed their limit and a later step will take over."""
 
@@ -439,9 +445,7 @@ def solve_on_path(path, build, work):
             checkpoint()
         except _Missed:
             result = None
-        diagnostics = getattr(op.factor, "diagnostics", None)
-        entry.update(diagnostics() if diagnostics else {})
-        entry.update(residual=float(op.residual), limit=float(op.residual_limit))
+        entry.update(_diagnostics(op.factor), residual=float(op.residual), limit=float(op.residual_limit))
         if result is not None:
             entry["outcome"] = "met" if op.residual <= op.residual_limit else "missed"
             return result, report

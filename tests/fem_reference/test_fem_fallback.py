@@ -13,6 +13,7 @@ that every step of the ``"auto"`` path runs here.
 """
 
 import logging
+import weakref
 
 import numpy as np
 import pytest
@@ -44,19 +45,27 @@ class _Missing:
     def solve(self, b):
         return 0.1 * self._exact.solve(b)
 
+    def diagnostics(self):
+        return {"solver": self.name, "factor_nonzeros": self.nnz}
+
 
 def _stand_in(budgeted=None, carried=None):
     """A ``factorize`` whose PARDISO is :class:`_Missing`; SuperLU with a memory budget (the
-    refactorisation of the same system) and without (the carried form, after a miss) may raise."""
-    seen = {"missed": False}
+    refactorisation of the same system) and without (the carried form, after a miss) may raise.
+    Every factorisation after a miss checks that the missed factor is gone: a factor kept alive
+    by the path would hold its memory while the next one fills in."""
+    seen = {"missed": None}
 
     def fake(A, solver="auto", memory=None):
         if solver == "pardiso":
-            seen["missed"] = True
-            return _Missing(A)
+            factor = _Missing(A)
+            seen["missed"] = weakref.ref(factor)
+            return factor
+        if seen["missed"] is not None:
+            assert seen["missed"]() is None, "the missed factor is still alive"
         if memory is not None and budgeted is not None:
             raise budgeted
-        if memory is None and seen["missed"] and carried is not None:
+        if memory is None and seen["missed"] is not None and carried is not None:
             raise carried
         return factorize(A, solver, memory=memory)
 
