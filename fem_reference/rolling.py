@@ -101,6 +101,11 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
         return _contact_and_fields(op, ops, top, cand, R, P, band, active_width, maxiter, checkpoint)
 
     out, report = solve_on_path(system_path(material, V, cmask, solver), build, work)
+    # the fields are solved and nothing solves with this factor again: free it (keeping its name and
+    # size for the result) before the next mesh (a remesh pass or the twin) is factored beside it
+    factor = out["op"].factor
+    out["op"] = replace(out["op"], factor=SimpleNamespace(name=factor.name, nnz=getattr(factor, "nnz", -1)))
+    del factor
     out.update(mesh=hs, ops=ops, solver_path=tuple(report))
     out["timings"]["assemble"] += setup
     out["timings"]["assemble_factor"] += setup
@@ -327,10 +332,6 @@ def _estimate(out, material, R, P, V, mesh):
     friction, the larger of its relative change to the twin and the gap between the two forms; for
     the peak pressure its change, where the result resolves the layer (docs/theory.md §9)."""
     t0 = time.perf_counter()
-    # the fine factor is not needed again: free it before the twin's comes
-    out["op"] = replace(
-        out["op"], factor=SimpleNamespace(name=out["op"].factor.name, nnz=getattr(out["op"].factor, "nnz", -1))
-    )
     try:
         coarse = out["twin"]()
     except (_BandEdge, ConvergenceError, MemoryError) as err:
