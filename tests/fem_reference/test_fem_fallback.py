@@ -156,8 +156,7 @@ def test_the_indentation_takes_the_same_path(pardiso_present, monkeypatch):
 
 def test_one_factor_alive_at_a_time(monkeypatch):
     # Each mesh's factor (of a remesh pass, and of the error estimate's twin) is freed once its fields
-    # are solved, before the next mesh is factored: two alive at once double a run's peak memory (a
-    # glass-transition rubber without PARDISO went from 6 to 10 GiB that way)
+    # are solved, before the next mesh is factored: two alive at once double a run's peak memory
     made = []
 
     def tracked(A, solver="auto", memory=None):
