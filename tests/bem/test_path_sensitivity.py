@@ -39,6 +39,7 @@ def test_perturbed_copies_are_seeded_last_bit_changes(sensitive):
     assert a.length == surface.length and a.shape == surface.shape
 
 
+@pytest.mark.slow
 def test_same_answer_on_every_path(sensitive):
     """Nominal and three perturbed copies: the products may differ several-fold (they are not
     asserted); friction, contact fraction and pressure agree to what rtol = 1e-8 bounds (the

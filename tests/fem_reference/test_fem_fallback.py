@@ -28,7 +28,7 @@ R, P = 0.02, 500.0
 SOLID = Material.standard_linear_solid(E0=2e6, E_inf=2e7, relaxation_time=0.01, nu=0.5)
 V = 0.03  # Hunter's friction peak of this solid is 0.0295 m/s
 # the fallbacks of the result's own solves (the error estimate's twin is tested elsewhere)
-KW = dict(radius=R, load=P, speed=V, resolution=2, estimate=False)
+KW = dict(radius=R, load=P, speed=V, resolution=1, estimate=False)
 
 
 class _Missing:

@@ -196,6 +196,7 @@ def test_graded_mesh_that_did_not_settle_says_so():
     assert r.peak_resolved == (r.thinnest_layer >= LAYER_ELEMENTS * r.smallest_element)
 
 
+@pytest.mark.slow
 def test_friction_forms_that_disagree_say_so(monkeypatch):
     # two decades below the friction peak of a 20-term rubber (E_inf/E0 = 1000), where the forms are
     # furthest apart (measured 0.91 %: -0.42 % moment, +0.49 % dissipation against the BEM): the
