@@ -39,6 +39,7 @@ __all__ = [
     "RESOLUTION",
     "ESTIMATE_LIMIT",
     "SHIFT_FACTOR",
+    "SHIFT_PHASE",
 ]
 
 log = logging.getLogger(__name__)
@@ -49,11 +50,16 @@ RESOLUTION = 12
 # A result whose error estimate exceeds this share warns.
 ESTIMATE_LIMIT = 0.01
 # The shifted solve's change times this is the estimate: the two readings are equally good, and an
-# error they share (the moving edge's layer, the mesh's) is not in their difference. The change was
-# 0.57 times the contact radius's error at worst (a 5-term rubber mid-creep at the default mesh; 0.79
-# on a standard solid at 2 elements per radius); twice it covered every case measured but one
-# (docs/theory.md §9).
+# error they share (the moving edge's layer, the mesh's) is not in their difference. Twice the change
+# covered the contact radius's error at every time on four held-out rubbers at the default mesh and
+# on a standard solid at 2 to 8 elements per radius, by 1.4 times at least where the error exceeded
+# 0.5 % (docs/theory.md §9).
 SHIFT_FACTOR = 2.0
+# The shifted solve's mesh, in elements of the sweep: half a node spacing, since a 9-node element
+# has a node at its middle. Its surface nodes then fall between the first mesh's, so an edge that
+# sits at a node of one is halfway between two of the other (a shift of half an element would put
+# its nodes on the first mesh's middle nodes, where both read the edge alike).
+SHIFT_PHASE = 0.25
 # The relaxed limit's step, in longest creep times: it leaves exp(-RELAXED_STEP) of the creep.
 RELAXED_STEP = 1e4
 
@@ -108,8 +114,8 @@ class IndentationResult:
         (:func:`~fem_reference.linsolve.solve_on_path`).
     error_estimate : dict
         ``contact_radius`` and ``approach``: relative error estimates at the output times, each the
-        larger of :data:`SHIFT_FACTOR` times the change from a solve on the mesh shifted by half an
-        element with half the steps per decade, and the largest error of this mesh's two elastic
+        larger of :data:`SHIFT_FACTOR` times the change from a solve on the mesh shifted by half a
+        node spacing (:data:`SHIFT_PHASE`) with half the steps per decade, and the largest error of this mesh's two elastic
         limits against Hertz (``elastic_limits``).
     elastic_limits : dict
         Relative errors against Hertz of the contact radius and approach at ``t = 0+`` (``glassy``,
@@ -199,8 +205,8 @@ def indentation(
 
     The mesh (:mod:`fem_reference.indentation_mesh`) holds ``resolution`` elements per contact
     radius at every radius the contact edge sweeps from the glassy to the relaxed Hertz radius. The
-    same problem is solved a second time on the mesh shifted by half an element with half the steps
-    per decade, and each result carries the error estimate of its contact radius and approach (see
+    same problem is solved a second time on the mesh shifted by half a node spacing with half the
+    steps per decade, and each result carries the error estimate of its contact radius and approach (see
     :class:`IndentationResult`); a warning says when it exceeds :data:`ESTIMATE_LIMIT`.
 
     Parameters
@@ -262,7 +268,7 @@ def indentation(
     t_start = time.perf_counter()
     setup = dict(material=material, R=R, P=P, band=band, L=L, grading=ratio, solver=solver, maxiter=maxiter)
     run = _creep_run(t_out, n_res, spd, vtk=vtk, **setup)
-    shifted = _creep_run(t_out, n_res, max(1, spd // 2), phase=0.5, **setup)
+    shifted = _creep_run(t_out, n_res, max(1, spd // 2), phase=SHIFT_PHASE, **setup)
     estimate, limits = _estimate(run, shifted, material, R, P)
     warnings = tuple(
         f"{name.replace('_', ' ')} error estimate {float(np.max(e)):.2%} exceeds {ESTIMATE_LIMIT:.0%} "

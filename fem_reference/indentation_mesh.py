@@ -52,16 +52,20 @@ def creep_axis(a_glassy, sweep_end, resolution, length, grading, phase=0.0):
     grading : float
         Element growth ratio beyond ``sweep_end``, > 1.
     phase : float
-        Shift of the nodes in the sweep, in elements: the uniform part ends at
-        ``a_glassy (1 + 1/resolution)^phase``; 0.5 puts the nodes halfway between those of 0.
+        Shift of the nodes in the sweep, in elements: the uniform part ends at ``a_glassy
+        rho^phase``, with ``rho`` (about ``1 + 1/resolution``) the sweep's step ratio at phase 0,
+        and the sweep keeps that ratio; 0.5 puts the vertices halfway between those of phase 0
+        over the whole sweep.
     """
     growth = 1.0 + 1.0 / resolution
-    core_end = a_glassy * growth**phase
+    # the nearest whole number of elements of ratio ``growth`` from a_glassy: none where the sweep
+    # is shorter than half an element (a nearly elastic solid); every phase keeps phase 0's ratio,
+    # so that its nodes stay the same share of a step away from phase 0's through the sweep
+    n_sweep = round(math.log(sweep_end / a_glassy) / math.log(growth))
+    rho = (sweep_end / a_glassy) ** (1.0 / n_sweep) if n_sweep else growth
+    core_end = a_glassy * rho**phase
     core = np.linspace(0.0, core_end, resolution + 1)
-    # the nearest whole number of elements of ratio ``growth``: none where the sweep is shorter
-    # than half an element (a nearly elastic solid)
-    n_sweep = round(math.log(sweep_end / core_end) / math.log(growth))
-    sweep = core_end * (sweep_end / core_end) ** (np.arange(1, n_sweep + 1) / max(n_sweep, 1))
+    sweep = core_end * rho ** np.arange(1, n_sweep + 1)
     edges = np.concatenate([core, sweep])
     outer = _geometric(edges[-1], length, (edges[-1] - edges[-2]) * grading, grading)
     return np.concatenate([edges, outer])

@@ -6,7 +6,7 @@ import pytest
 from bem import InputError, Material
 from fem_reference import indentation
 from fem_reference.axisymmetric import AxisymmetricStepper, fixed_dofs_axisymmetric
-from fem_reference.indentation import time_grid
+from fem_reference.indentation import SHIFT_PHASE, time_grid
 from fem_reference.indentation_mesh import creep_axis
 from fem_reference.kinematics import quadrature_operators
 from fem_reference.mesh import half_space_mesh
@@ -152,10 +152,29 @@ def test_creep_mesh_is_as_fine_relative_to_every_contact_radius_it_sweeps(ratio)
     assert np.count_nonzero(sweep) <= n * (1 + np.log(band * a0 / a_inf)) + 2
 
 
+@pytest.mark.parametrize("n", [2, 12])
+def test_the_shifted_mesh_has_its_nodes_between_the_first_ones(n):
+    # the contact radius is read from the surface nodes, vertices and the 9-node elements' middle
+    # nodes alike: the estimate's twin must read the edge at other nodes, so over the sweep each of
+    # its nodes lies near the middle between two of the first mesh's (within the growth of one node
+    # spacing), never on one of them
+    a_inf, a0 = 1.0, 10.0 ** (1 / 3)
+
+    def nodes(phase):
+        x = creep_axis(a_inf, 1.5 * a0, n, 1000 * a0, 1.3, phase)
+        return np.sort(np.concatenate([x, 0.5 * (x[1:] + x[:-1])]))
+
+    first, twin = nodes(0.0), nodes(SHIFT_PHASE)
+    inner = twin[(twin > 1.05 * a_inf) & (twin < a0)]
+    k = np.searchsorted(first, inner)
+    share = (inner - first[k - 1]) / (first[k] - first[k - 1])  # where between its two neighbours
+    assert np.all(np.abs(share - 0.5) <= 0.5 / n + 0.05), share
+
+
 def test_a_coarse_mesh_warns_and_its_estimate_covers_its_error():
     # Two elements per contact radius and 4 steps per decade on a standard solid, E_inf/E0 = 10:
     # contact radius up to 3.0 % and approach up to 2.4 % off Lee & Radok. The estimate (twice the
-    # change on the mesh shifted by half an element at half the steps per decade, or the elastic
+    # change on the mesh shifted by half a node spacing at half the steps per decade, or the elastic
     # limits' error) says 15 % and 6.0 % at worst, at least the error at every time, and warns; a
     # result whose estimate said less than its worst error would let a wrong reference pass.
     m = Material.standard_linear_solid(E0=1e6, E_inf=1e7, creep_time=1.0, nu=0.5)
@@ -172,13 +191,28 @@ def test_a_coarse_mesh_warns_and_its_estimate_covers_its_error():
 
 
 @pytest.mark.slow
+def test_the_estimate_covers_the_contact_radius_at_every_time():
+    # A standard solid at E_inf/E0 = 1000 (tau = 0.1 s, R = 5 mm, P = 1 N) at the default mesh, 12
+    # times from 1e-8 s to 1e3 s: mid-creep the edge sits at a node of the first mesh and reads
+    # 0.89 % and 0.82 % off Lee & Radok. The shifted twin reads it between two nodes: estimates
+    # 1.37 % and 1.90 %, at least 1.5 times the error at every time. A twin whose nodes sat on the
+    # first mesh's middle nodes read the edge alike and said 0.54 % for the 0.89 % (69 s).
+    m = Material.standard_linear_solid(E0=1e6, E_inf=1e9, relaxation_time=0.1, nu=0.5)
+    times = np.logspace(-8, 3, 12)
+    r = indentation(m, radius=0.005, load=1.0, times=times)
+    err_a = np.abs(r.contact_radius / lee_radok.contact_radius(m, 0.005, 1.0, times) - 1)
+    assert np.max(err_a) > 0.008  # the case has teeth: an edge read at a node, near 1 % off
+    assert np.all(r.error_estimate["contact_radius"] >= err_a), r.error_estimate["contact_radius"] / err_a
+
+
+@pytest.mark.slow
 def test_lee_radok_on_a_held_out_rubber_at_the_default_mesh():
     # A 5-term rubber no other test uses (E_inf/E0 = 50, tau = 1e-4..1e-1 s, E0 = 2 MPa), called
     # with no mesh argument (88 s, 0.6 GiB). Measured against Lee & Radok at 10 times from 0 to
     # 1000 creep times: contact radius within 1.45 % (mid-creep, where the moving edge's layer is
     # thinner than an element; <= 0.34 % elsewhere), approach within 0.30 %. Tolerances 2 % and
     # 0.5 % (margins 1.4x and 1.7x). Where the contact radius is off by more than 1 % the estimate
-    # must say so (measured 1.66 % against the 1.45 % error).
+    # must say so (measured 2.64 % against the 1.45 % error).
     m = Material.from_prony(E0=2e6, moduli=np.full(5, 2e6 * 49 / 5), times=np.geomspace(1e-4, 1e-1, 5))
     times = np.concatenate([[0.0], np.geomspace(1e-5, 1e3 * float(np.max(m.creep_times)), 9)])
     r = indentation(m, radius=R, load=P, times=times)
