@@ -26,6 +26,7 @@ with ``m`` the trace vector, ``K = 1 / (3 (1 - 2 nu))`` the bulk modulus and
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -85,8 +86,6 @@ class QuadratureOperators:
         thickness) or volumes ``2 pi r dA`` (m^3, axisymmetric).
     points : ndarray, (2, ngp)
         Coordinates of the quadrature points (m).
-    row : ndarray of int, (ngp,)
-        Label of the horizontal row of quadrature points (a streamline) of each point.
     """
 
     basis: object
@@ -95,7 +94,6 @@ class QuadratureOperators:
     N_p: sp.csr_matrix
     weights: np.ndarray
     points: np.ndarray
-    row: np.ndarray
 
     @property
     def ncomp(self):
@@ -104,6 +102,17 @@ class QuadratureOperators:
     @property
     def n_points(self):
         return self.weights.size
+
+    @cached_property
+    def flow(self):
+        """The rows of points as streamlines of a flow along ``-x``
+        (:class:`~fem_reference.memory.Flow`): each element row takes its inflow from the elements
+        upstream of its ``x = x_max`` face."""
+        from .memory import mesh_flow
+
+        nel, nqp = self.basis.dx.shape
+        mesh = self.basis.mesh
+        return mesh_flow(mesh.p, mesh.t, self.points.reshape(2, nel, nqp))
 
     @property
     def cell(self):
@@ -166,14 +175,7 @@ def quadrature_operators(mesh, kind="plane"):
     ).tocsr()
 
     weights = ib.dx.ravel() * (2.0 * np.pi * r.ravel() if kind == "axi" else 1.0)
-    # streamline rows: element row (from the element's lower edge) and local Gauss level
-    ylev = np.unique(mesh.p[1])
-    erow = np.searchsorted(ylev, lo[1] + 0.25 * (hi[1] - lo[1]))
-    # the local Gauss level from the physical y (element orientations may differ)
-    t = (pts[1] - lo[1][:, None]) / (hi[1] - lo[1])[:, None]  # 0.11, 0.5 or 0.89
-    qlev = np.searchsorted([0.3, 0.7], t)
-    row = (erow[:, None] * 3 + qlev).ravel()
-    return QuadratureOperators(ib, kind, B, N_p, weights, pts.reshape(2, -1), row)
+    return QuadratureOperators(ib, kind, B, N_p, weights, pts.reshape(2, -1))
 
 
 @dataclass(frozen=True)

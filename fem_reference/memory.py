@@ -52,16 +52,25 @@ the friction at E_inf/E0 = 10, at every resolution.) Properties:
   point only to its own element and the outflow of the one upstream, however long the memory.
   The truncated memory instead couples a point to every element within its reach
   (:func:`memory_reach`): cheaper only where that reach is an element or two.
+
+Which outflow values a row of an element receives is a :class:`Flow`: on rows of points
+(:func:`row_flow`) the element upstream on the same row; on a mesh of rectangles (:func:`mesh_flow`)
+the elements whose outflow faces meet its inflow face, whose traces (quadratics in height, nodal at
+their rows) are projected onto its own, so that elements may halve or double across a face.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 
 __all__ = [
+    "Flow",
+    "row_flow",
+    "mesh_flow",
     "reference_element",
     "element_blocks",
     "memory_operators",
@@ -113,9 +122,44 @@ def element_blocks(zeta):
     return K, sol[:, :, :3], sol[:, :, 3]
 
 
-def _elements(keys, x, cells):
-    """Elements along each row in flow order: first sorted point of each, its length and
-    whether it opens its row; with the sort order of the points."""
+@dataclass(frozen=True)
+class Flow:
+    """Where each row segment of an element takes its inflow from.
+
+    A *segment* is one row of an element's 3x3 Gauss points: its 3 points along the flow, at one
+    height. The viscous strain of a term is a quadratic in ``x`` on each segment, nodal at its points,
+    and the segment passes downstream only its outflow value ``beta`` (:func:`state_operators`).
+
+    Attributes
+    ----------
+    points : (ns, 3) int array
+        Quadrature-point index of each segment's points, upstream (largest ``x``) first.
+    length : (ns,) array
+        Length of each segment's element along the flow (m).
+    inflow : scipy.sparse.csr_matrix, (ns, ns)
+        ``alpha_in = inflow @ beta``: the value each segment receives at its inflow face from the
+        outflow values of the segments upstream of that face. Its rows sum to 1 (a constant passes
+        unchanged); a segment whose inflow face is the block's upstream end has an empty row (the
+        material arrives relaxed there, ``alpha = eps``).
+    n_points : int
+        Number of quadrature points.
+    """
+
+    points: np.ndarray
+    length: np.ndarray
+    inflow: sp.csr_matrix
+    n_points: int
+
+    @property
+    def opens(self):
+        """Segments whose inflow face is the block's upstream end."""
+        return np.diff(self.inflow.indptr) == 0
+
+
+def row_flow(keys, x, cells):
+    """:class:`Flow` of points on rows: ``keys`` the row of each point, ``x`` its position (m) and
+    ``cells`` its element (3 points of each row per element); each element takes its inflow from
+    the one upstream on its row."""
     keys = np.asarray(keys)
     x = np.asarray(x, dtype=float)
     cells = np.asarray(cells)
@@ -128,7 +172,78 @@ def _elements(keys, x, cells):
     if not np.all(np.diff(np.concatenate([first, [n]])) == 3):
         raise ValueError("every element must hold exactly 3 points of each row it crosses")
     length = (xs[first] - xs[first + 2]) / math.sqrt(0.6)
-    return order, first, length, row_start[first]
+    ns = first.size
+    up = np.flatnonzero(~row_start[first])
+    inflow = sp.csr_matrix((np.ones(up.size), (up, up - 1)), shape=(ns, ns))
+    return Flow(order[first[:, None] + np.arange(3)[None, :]], length, inflow, n)
+
+
+def _face_weights(e_lo, e_hi, f_lo, f_hi):
+    """``(m, 3, 3)`` weights of the L2 projection of a quadratic on ``[f_lo, f_hi]`` (nodal at its
+    Gauss points) onto the quadratics on ``[e_lo, e_hi]``, over their overlap only. Summed over the
+    intervals that tile the face, a row of weights sums to 1; where ``[f_lo, f_hi]`` covers the face
+    they are the upstream quadratic's values at the face's Gauss points (exact restriction)."""
+    nodes, w, _, _, _ = reference_element()
+    lo, hi = np.maximum(e_lo, f_lo), np.minimum(e_hi, f_hi)
+    yq = 0.5 * (lo + hi)[:, None] + 0.5 * (hi - lo)[:, None] * nodes[None, :]  # (m, 3) overlap Gauss points
+    wq = 0.5 * (hi - lo)[:, None] * w[None, :]
+
+    def lagrange(lo_, hi_):
+        t = (2.0 * yq - (lo_ + hi_)[:, None]) / (hi_ - lo_)[:, None]  # (m, q)
+        out = np.ones(t.shape + (3,))
+        for j in range(3):
+            for m in range(3):
+                if m != j:
+                    out[..., j] *= (t - nodes[m]) / (nodes[j] - nodes[m])
+        return out  # (m, q, 3)
+
+    pe, pf = lagrange(e_lo, e_hi), lagrange(f_lo, f_hi)
+    mass = 0.5 * (e_hi - e_lo)[:, None] * w[None, :]  # the Lagrange mass at Gauss nodes is diagonal
+    out = np.einsum("mq,mqj,mqi->mji", wq, pe, pf) / mass[:, :, None]
+    out[(e_lo == f_lo) & (e_hi == f_hi)] = np.eye(3)  # a matching face: row to row, without round-off
+    return out
+
+
+def mesh_flow(p, t, points):
+    """:class:`Flow` of the 3x3 Gauss points of axis-aligned rectangles.
+
+    ``p`` (2, nv) and ``t`` (4, nel) are the mesh's vertices and elements, ``points`` (2, nel, 9)
+    the quadrature points. An element takes its inflow through its ``x = x_max`` face from every
+    element whose ``x = x_min`` face overlaps it, projected onto its own face (:func:`_face_weights`):
+    one neighbour of the same height on a tensor mesh, or up to two of half or twice its height
+    where the mesh coarsens.
+    """
+    pv = p[:, t]  # (2, 4, nel)
+    lo, hi = pv.min(axis=1), pv.max(axis=1)
+    nel = t.shape[1]
+    rel = (points - lo[:, :, None]) / (hi - lo)[:, :, None]  # (2, nel, 9) in (0, 1)
+    pos = 2 - np.searchsorted([0.3, 0.7], rel[0].ravel()).reshape(rel[0].shape)  # upstream first
+    lev = np.searchsorted([0.3, 0.7], rel[1].ravel()).reshape(rel[1].shape)
+    idx = np.empty((nel, 3, 3), dtype=int)
+    q = np.arange(points.shape[2])
+    idx[np.arange(nel)[:, None], lev, pos] = np.arange(nel)[:, None] * points.shape[2] + q[None, :]
+    pairs_e, pairs_f = [], []
+    for xv in np.intersect1d(hi[0], lo[0]):
+        es = np.flatnonzero(hi[0] == xv)
+        fs = np.flatnonzero(lo[0] == xv)
+        es = es[np.argsort(lo[1, es])]
+        fs = fs[np.argsort(lo[1, fs])]
+        start = np.searchsorted(hi[1, fs], lo[1, es], side="right")
+        stop = np.searchsorted(lo[1, fs], hi[1, es], side="left")
+        count = np.maximum(stop - start, 0)
+        pe = np.repeat(es, count)
+        pf = fs[np.repeat(start - np.cumsum(count) + count, count) + np.arange(count.sum())]
+        pairs_e.append(pe)
+        pairs_f.append(pf)
+    pe = np.concatenate(pairs_e) if pairs_e else np.zeros(0, dtype=int)
+    pf = np.concatenate(pairs_f) if pairs_f else np.zeros(0, dtype=int)
+    wts = _face_weights(lo[1, pe], hi[1, pe], lo[1, pf], hi[1, pf])  # (m, 3 rows of e, 3 rows of f)
+    rows = np.broadcast_to(3 * pe[:, None, None] + np.arange(3)[None, :, None], wts.shape)
+    cols = np.broadcast_to(3 * pf[:, None, None] + np.arange(3)[None, None, :], wts.shape)
+    inflow = sp.csr_matrix((wts.ravel(), (rows.ravel(), cols.ravel())), shape=(3 * nel, 3 * nel))
+    inflow.eliminate_zeros()
+    length = np.repeat(hi[0] - lo[0], 3)
+    return Flow(idx.reshape(3 * nel, 3), length, inflow, nel * points.shape[2])
 
 
 def _zeta(length, ell):
@@ -139,156 +254,104 @@ def _zeta(length, ell):
     return length / (2.0 * ell)
 
 
-def _unsort(M, order):
-    inv = np.empty(order.size, dtype=int)
-    inv[order] = np.arange(order.size)
-    return M[inv][:, inv].tocsr()
-
-
-def _row_blocks(length, opens, ell):
-    """``(S, c)`` of every element, a row's first element relaxed (``alpha = eps``, nothing in)."""
-    _, S, c = element_blocks(_zeta(length, ell))
+def _segment_blocks(flow, ell):
+    """``(S, c, gamma, q)`` of every segment; one with nothing upstream is relaxed (``alpha = eps``)."""
+    _, S, c = element_blocks(_zeta(flow.length, ell))
+    opens = flow.opens
     S = np.where(opens[:, None, None], np.eye(3)[None], S)
     c = np.where(opens[:, None], 0.0, c)
-    return S, c
-
-
-def memory_operators(keys, x, ell, cells):
-    """Sparse ``L``, ``R`` with ``L alpha = R eps`` (points in the given order).
-
-    Each element's rows are the update solved for its own points, ``alpha_e - c_e r^T
-    alpha_{e-1} = S_e eps_e`` (:func:`element_blocks`), so ``L`` is unit block-lower-bidiagonal in
-    flow order (its diagonal is the identity, as pivots need), and ``R`` block-diagonal.
-
-    Parameters
-    ----------
-    keys : (n,) int array
-        Streamline (row) label of each point.
-    x : (n,) array
-        Position along the flow axis (m); material flows toward ``-x``.
-    ell : float
-        Advection length ``V tau`` (m), ``>= 0``; ``inf`` allowed (glassy).
-    cells : (n,) int array
-        Element of each point (3 points of each row per element).
-    """
-    order, first, length, opens = _elements(keys, x, cells)
-    n = order.size
-    S, c = _row_blocks(length, opens, ell)
     _, _, _, _, r = reference_element()
-    loc = np.arange(3)
-    blk_r = np.broadcast_to(first[:, None, None] + loc[None, :, None], (first.size, 3, 3))
-    blk_c = np.broadcast_to(first[:, None, None] + loc[None, None, :], (first.size, 3, 3))
-    up = np.flatnonzero(~opens)
-    cpl = -c[up][:, :, None] * r[None, None, :]  # -c_e r^T on the upstream element's points
-    L = sp.coo_matrix(
-        (
-            np.concatenate([np.ones(n), cpl.ravel()]),
-            (
-                np.concatenate([np.arange(n), blk_r[up].ravel()]),
-                np.concatenate([np.arange(n), (blk_c[up] - 3).ravel()]),
-            ),
-        ),
-        shape=(n, n),
-    ).tocsr()
-    R = sp.coo_matrix((S.ravel(), (blk_r.ravel(), blk_c.ravel())), shape=(n, n)).tocsr()
-    return _unsort(L, order), _unsort(R, order)
+    return S, c, c @ r, np.einsum("sij,i->sj", S, r)
 
 
-def state_operators(keys, x, ell, cells):
-    """Exact memory through the outflow values ``beta`` of the elements (see the module docstring).
+def _on_points(flow, vals):
+    """``(n, ns)`` matrix putting ``vals`` (ns, 3) on each segment's points."""
+    ns = flow.length.size
+    return sp.csr_matrix((vals.ravel(), (flow.points.ravel(), np.repeat(np.arange(ns), 3))), shape=(flow.n_points, ns))
+
+
+def _own_blocks(flow, S):
+    pts = flow.points
+    return sp.csr_matrix(
+        (S.ravel(), (np.repeat(pts, 3, axis=1).ravel(), np.tile(pts, (1, 3)).ravel())),
+        shape=(flow.n_points, flow.n_points),
+    )
+
+
+def memory_operators(flow, ell):
+    """Sparse ``L``, ``R`` with ``L alpha = R eps`` (``alpha`` at the points, in their order).
+
+    Each segment's rows are the update solved for its own points, ``alpha_s - c_s alpha_in =
+    S_s eps_s`` (:func:`element_blocks`) with ``alpha_in`` the inflow (:class:`Flow`) of the
+    upstream segments' outflow values ``r^T alpha``: ``L`` has a unit diagonal, ``R`` holds the
+    ``S_s``. ``ell`` is the advection length ``V tau`` (m), ``>= 0``; ``inf`` allowed (glassy).
+    """
+    S, c, _, _ = _segment_blocks(flow, ell)
+    _, _, _, _, r = reference_element()
+    out = _on_points(flow, np.broadcast_to(r, (flow.length.size, 3))).T  # r^T alpha of each segment
+    L = sp.identity(flow.n_points, format="csr") - _on_points(flow, c) @ flow.inflow @ out
+    return L.tocsr(), _own_blocks(flow, S)
+
+
+def state_operators(flow, ell):
+    """Exact memory through the outflow values ``beta`` of the segments (see the module docstring).
 
     Returns sparse ``(D, E, L, R)`` with ``alpha = D eps + E beta`` and ``L beta = R eps``: ``D``
-    (n, n) holds each element's own ``S_e``, ``E`` (n, m) its ``c_e`` on the outflow of the element
-    upstream, ``L`` (m, m) is unit lower bidiagonal with ``-gamma_e`` below the diagonal and ``R``
-    (m, n) holds ``q_e^T = r^T S_e``; ``m`` is the number of elements crossed by all rows (in flow
-    order along each row). Points in the given order; parameters as :func:`memory_operators`.
+    (n, n) holds each segment's own ``S_s``, ``E`` (n, ns) its ``c_s`` on its inflow from the outflow
+    values upstream, ``L = I - diag(gamma) inflow`` (ns, ns) and ``R`` (ns, n) holds ``q_s^T =
+    r^T S_s``; ``ns`` segments (:class:`Flow`), points in their order.
     """
-    order, first, length, opens = _elements(keys, x, cells)
-    n = order.size
-    ne = first.size
-    S, c = _row_blocks(length, opens, ell)
-    _, _, _, _, r = reference_element()
-    loc = np.arange(3)
-    pts = first[:, None] + loc[None, :]  # (ne, 3) sorted point indices of each element
-    inv = np.empty(n, dtype=int)
-    inv[order] = np.arange(n)
-    pts = order[pts]  # back to the given order
-    D = sp.coo_matrix((S.ravel(), (np.repeat(pts, 3, axis=1).ravel(), np.tile(pts, (1, 3)).ravel())), shape=(n, n))
-    up = np.flatnonzero(~opens)
-    E = sp.coo_matrix((c[up].ravel(), (pts[up].ravel(), np.repeat(up - 1, 3))), shape=(n, ne))
-    gamma = c[up] @ r
-    L = sp.coo_matrix(
-        (
-            np.concatenate([np.ones(ne), -gamma]),
-            (np.concatenate([np.arange(ne), up]), np.concatenate([np.arange(ne), up - 1])),
-        ),
-        shape=(ne, ne),
-    )
-    q = np.einsum("eij,i->ej", S, r)
-    R = sp.coo_matrix((q.ravel(), (np.repeat(np.arange(ne), 3), pts.ravel())), shape=(ne, n))
-    return D.tocsr(), E.tocsr(), L.tocsr(), R.tocsr()
+    S, c, gamma, q = _segment_blocks(flow, ell)
+    ns = gamma.size
+    E = _on_points(flow, c) @ flow.inflow
+    L = sp.identity(ns, format="csr") - sp.diags(gamma) @ flow.inflow
+    R = _on_points(flow, q).T
+    return _own_blocks(flow, S), E.tocsr(), L.tocsr(), R.tocsr()
 
 
-def memory_reach(keys, x, ell, cells, tol=1e-13):
-    """Mean number of upstream elements the truncated memory (:func:`condensed_memory`) couples
-    to each element: the ``f < e`` of its row with ``prod_{g=f+1}^{e-1} gamma_g >= tol``."""
-    _, first, length, opens = _elements(keys, x, cells)
-    ne = first.size
-    if ne == 0:
+def _truncated_series(flow, gamma, tol, limit=np.inf):
+    """Yield ``A_j = inflow (diag(gamma) inflow)^j`` for ``j = 0, 1, ...``, entries below ``tol`` in
+    magnitude dropped, until none is left or the mean count of entries so far exceeds ``limit``."""
+    step = (sp.diags(gamma) @ flow.inflow).tocsr()
+    A = flow.inflow.copy()
+    ns = max(gamma.size, 1)
+    total = 0
+    while A.nnz:
+        A.data[np.abs(A.data) < tol] = 0.0
+        A.eliminate_zeros()
+        if not A.nnz:
+            return
+        yield A
+        total += A.nnz
+        if total / ns > limit:
+            return
+        A = (A @ step).tocsr()
+
+
+def memory_reach(flow, ell, tol=1e-13, limit=np.inf):
+    """Mean number of upstream segments the truncated memory (:func:`condensed_memory`) couples to
+    each segment (on rows: elements ``f < e`` with ``prod_{g=f+1}^{e-1} gamma_g >= tol``); counting
+    stops once the mean exceeds ``limit`` (the value returned is then above it)."""
+    ns = flow.length.size
+    if ns == 0:
         return 0.0
-    _, _, c = element_blocks(_zeta(length, ell))
-    _, _, _, _, r = reference_element()
-    gamma = np.clip(c @ r, 1e-300, 1.0)
-    gamma[opens] = 1.0  # never multiplied in: a row's first element has nothing upstream
-    # log Gamma_{e,f} = C[e-1] - C[f] with C the running sum of log gamma (non-increasing)
-    C = np.cumsum(np.log(gamma))
-    row_first = np.maximum.accumulate(np.where(opens, np.arange(ne), 0))
-    e = np.arange(1, ne)
-    fmin = np.searchsorted(-C, -C[e - 1] + math.log(tol), side="left")
-    reach = np.where(opens[e], 0, e - np.maximum(fmin, row_first[e]))
-    return float(np.sum(np.maximum(reach, 0)) / ne)
+    _, _, gamma, _ = _segment_blocks(flow, ell)
+    return float(sum(A.nnz for A in _truncated_series(flow, gamma, tol, limit)) / ns)
 
 
-def condensed_memory(keys, x, ells, weights, cells, tol=1e-13):
-    """``S = sum_k weights_k A_k`` with ``alpha_k = A_k eps`` (points in the given order).
+def condensed_memory(flow, ells, weights, tol=1e-13):
+    """``S = sum_k weights_k A_k`` with ``alpha_k = A_k eps`` (points in their order).
 
-    The memory of each element is truncated where the product of the decays ``gamma`` from
-    the source element falls below ``tol`` (each decay is in (0, 1) and the weights of an
-    element are bounded, so the dropped tail is ``O(tol max|eps|)``).
+    The memory is truncated where the product of the decays ``gamma`` from the source segment falls
+    below ``tol`` (each decay is in (0, 1) and the weights of a segment are bounded, so the dropped
+    tail is ``O(tol max|eps|)``).
     """
-    order, first, length, opens = _elements(keys, x, cells)
-    n = order.size
-    ne = first.size
-    _, _, _, e_in, r = reference_element()
-    # the row each element belongs to, as the index of the row's first element
-    row_first = np.maximum.accumulate(np.where(opens, np.arange(ne), 0))
-    loc = np.arange(3)
-    pts = first[:, None] + loc[None, :]  # (ne, 3)
-    total = sp.csr_matrix((n, n))
+    total = sp.csr_matrix((flow.n_points, flow.n_points))
     for ell, wk in zip(ells, weights):
-        S, c = _row_blocks(length, opens, ell)
-        gamma = c @ r  # (ne,)
-        q = np.einsum("eij,i->ej", S, r)  # r^T S_e
-        rows = [np.repeat(pts, 3, axis=1).ravel()]
-        cols = [np.tile(pts, (1, 3)).ravel()]
-        vals = [S.ravel()]
-        G = np.ones(ne)
-        for j in range(1, ne):
-            e = np.arange(j, ne)
-            f = e - j
-            ok = row_first[e] <= f
-            if j > 1:
-                G = G[1:] * gamma[f + 1]  # Gamma_{e,f} = prod_{g=f+1}^{e-1} gamma_g
-            else:
-                G = np.ones(e.size)
-            keep = ok & (G >= tol)
-            if not np.any(keep):
-                break
-            ek, fk, Gk = e[keep], f[keep], G[keep]
-            block = c[ek][:, :, None] * (Gk[:, None] * q[fk])[:, None, :]  # (m, 3, 3)
-            rows.append(np.repeat(pts[ek], 3, axis=1).ravel())
-            cols.append(np.tile(pts[fk], (1, 3)).ravel())
-            vals.append(block.ravel())
-        A = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n))
+        S, c, gamma, q = _segment_blocks(flow, ell)
+        series = sp.csr_matrix((gamma.size, gamma.size))
+        for A in _truncated_series(flow, gamma, tol):
+            series = series + A
+        A = _own_blocks(flow, S) + _on_points(flow, c) @ series @ _on_points(flow, q).T
         total = total + wk * A.tocsr()
-    return _unsort(total.tocsr(), order)
+    return total.tocsr()

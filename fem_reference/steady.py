@@ -126,7 +126,7 @@ class SteadyOperator:
 
 def viscous_strain(ops, ell, eps):
     """``alpha`` (Voigt, point-major) of one term from the strain ``eps`` (exact update)."""
-    Lk, Rk = memory_operators(ops.row, ops.points[0], ell, ops.cell)
+    Lk, Rk = memory_operators(ops.flow, ell)
     lu = spla.splu(sp.csc_matrix(Lk))
     ncomp = ops.ncomp
     e = eps.reshape((-1, ncomp) + eps.shape[1:])
@@ -155,7 +155,7 @@ def condensable(ops, material, speed, max_reach=MAX_REACH):
     on average (:func:`~fem_reference.memory.memory_reach`)."""
     return np.array(
         [
-            speed * tau > 0 and memory_reach(ops.row, ops.points[0], speed * tau, ops.cell) <= max_reach
+            speed * tau > 0 and memory_reach(ops.flow, speed * tau, limit=max_reach) <= max_reach
             for tau in material.relaxation_times
         ],
         dtype=bool,
@@ -216,10 +216,10 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False, memo
     n = ops.n_points
     S = sp.csr_matrix((n, n))
     if np.any(cmask):
-        S = condensed_memory(ops.row, ops.points[0], speed * material.relaxation_times[cmask], g[cmask], ops.cell)
+        S = condensed_memory(ops.flow, speed * material.relaxation_times[cmask], g[cmask])
     states, chains = {}, []
     for k in np.flatnonzero(~cmask):
-        D, E, Lk, Rk = state_operators(ops.row, ops.points[0], speed * material.relaxation_times[k], ops.cell)
+        D, E, Lk, Rk = state_operators(ops.flow, speed * material.relaxation_times[k])
         S = S + g[k] * D
         Ek = sp.kron(E, eye, format="csr")
         states[k] = (D, E, Ek.shape[1])
