@@ -161,3 +161,31 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
     y = graded_coordinates(-length, 0.0, [0.0], [h_lead], ratio=ratio)
     mesh = half_space_boundaries(x, y)
     return HalfSpaceMesh(mesh, x, y, float(min(h_lead, h_edge)), (float(x[0]), float(x[-1])), float(-y[0]))
+
+
+def graded_quadtree(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=0.01, coarsen=1.0):
+    """A :class:`~fem_reference.quadtree.QuadtreeMesh` graded toward the contact ``edges`` in both
+    directions (parameters as :func:`graded_half_space`)."""
+    from .quadtree import quadtree_half_space
+
+    trail, lead = edges
+    a_c = 0.5 * (lead - trail)
+    h_edge = a_c / resolution
+    ell = speed * material.relaxation_times
+    ell = ell[ell > 0]
+    floor = layer_floor * h_edge
+    thinnest = float(ell.min()) if ell.size else float("inf")
+    if ell.size == 1 and thinnest >= SINGLE_TERM_FLOOR * h_edge:
+        floor = min(floor, thinnest)
+    h_lead = min(thinnest / LAYER_ELEMENTS if thinnest >= floor else floor, h_edge)
+    resolved = floor <= thinnest < np.inf
+    h_edge, h_lead = coarsen * h_edge, coarsen * h_lead
+    h_zone = h_edge / LAYER_ELEMENTS
+    # each edge gets LAYER_ELEMENTS elements across a zone one edge element wide about it (as the
+    # trailing edge of graded_half_space): squares do not put a node on the edge
+    segments = [(trail, lead, h_edge), (lead, lead, h_lead)]
+    segments += [(e - 0.5 * h_edge, e + 0.5 * h_edge, h_zone) for e in (trail, lead)]
+    if resolved:
+        pad = 0.5 * LAYER_ELEMENTS * h_lead
+        segments.append((lead - thinnest - pad, lead + pad, h_lead))
+    return quadtree_half_space(segments, length=length, ratio=ratio)

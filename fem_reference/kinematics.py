@@ -25,7 +25,7 @@ with ``m`` the trace vector, ``K = 1 / (3 (1 - 2 nu))`` the bulk modulus and
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -86,6 +86,12 @@ class QuadratureOperators:
         thickness) or volumes ``2 pi r dA`` (m^3, axisymmetric).
     points : ndarray, (2, ngp)
         Coordinates of the quadrature points (m).
+    constraint : scipy.sparse.csr_matrix, (N_u, N_u), optional
+        ``u = constraint @ u`` sets the hanging DOFs from the others (a mesh whose elements halve
+        across some faces, :func:`fem_reference.quadtree.constraint_matrix`); ``B`` already
+        includes it. None where no node hangs.
+    constrained : ndarray of int
+        The hanging DOFs: not unknowns of a solve.
     """
 
     basis: object
@@ -94,6 +100,12 @@ class QuadratureOperators:
     N_p: sp.csr_matrix
     weights: np.ndarray
     points: np.ndarray
+    constraint: object = None
+    constrained: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+
+    def complete(self, u):
+        """Nodal ``u`` with its hanging DOFs set from the others (``u`` itself where none hang)."""
+        return u if self.constraint is None else self.constraint @ u
 
     @property
     def ncomp(self):
@@ -126,8 +138,10 @@ class QuadratureOperators:
         return sp.kron(sp.diags(self.weights), sp.csr_matrix(d), format="csr")
 
 
-def quadrature_operators(mesh, kind="plane"):
-    """Build :class:`QuadratureOperators` on a rectangle ``mesh`` (``skfem.MeshQuad``)."""
+def quadrature_operators(mesh, kind="plane", hanging=None):
+    """Build :class:`QuadratureOperators` on a rectangle ``mesh`` (``skfem.MeshQuad``), whose
+    ``hanging`` vertices ``(M, A, B)`` (:class:`fem_reference.quadtree.QuadtreeMesh`) hang at the
+    middle of the faces ``A``-``B`` of larger elements."""
     from skfem import Basis, ElementQuad2, ElementVector
 
     if kind not in ("plane", "axi"):
@@ -154,6 +168,12 @@ def quadrature_operators(mesh, kind="plane"):
     B = sp.coo_matrix(
         (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(nel * nqp * ncomp, ib.N)
     ).tocsr()
+    constraint, constrained = None, np.zeros(0, dtype=int)
+    if hanging is not None and len(hanging):
+        from .quadtree import constraint_matrix
+
+        constraint, constrained = constraint_matrix(ib, hanging)
+        B = (B @ constraint).tocsr()
     B.eliminate_zeros()
 
     # element pressure basis 1, (x - xc)/hx, (y - yc)/hy
@@ -175,7 +195,7 @@ def quadrature_operators(mesh, kind="plane"):
     ).tocsr()
 
     weights = ib.dx.ravel() * (2.0 * np.pi * r.ravel() if kind == "axi" else 1.0)
-    return QuadratureOperators(ib, kind, B, N_p, weights, pts.reshape(2, -1))
+    return QuadratureOperators(ib, kind, B, N_p, weights, pts.reshape(2, -1), constraint, constrained)
 
 
 @dataclass(frozen=True)

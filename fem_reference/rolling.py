@@ -25,7 +25,7 @@ from bem.checks import check_int, check_positive
 from bem.errors import ConvergenceError, InputError
 
 from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
-from .graded import LAYER_ELEMENTS, SINGLE_TERM_FLOOR, fold_terms, graded_half_space, initial_edges
+from .graded import LAYER_ELEMENTS, SINGLE_TERM_FLOOR, fold_terms, graded_half_space, graded_quadtree, initial_edges
 from .kinematics import quadrature_operators
 from .linsolve import available_memory, solve_on_path
 from .mesh import half_space_mesh
@@ -83,11 +83,11 @@ def _flexibility(op, top_dofs, ydofs):
     return w
 
 
-def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, active_width):
+def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, active_width, squares=False):
     """Factor (along the system's solver path), condense onto the candidate nodes, solve the
     contact and the fields."""
     t0 = time.perf_counter()
-    ops = quadrature_operators(hs.mesh, "plane")
+    ops = quadrature_operators(hs.mesh, "plane", hanging=getattr(hs, "hanging", None))
     cmask = condensed_terms(ops, material, V, condense)
     top = top_surface(ops.basis)
     cand = (top.x >= band[0] - 1e-12 * abs(band[0])) & (top.x <= band[1] + 1e-12 * abs(band[1]))
@@ -100,7 +100,7 @@ def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, activ
     def work(op, checkpoint):
         return _contact_and_fields(op, ops, top, cand, R, P, band, active_width, maxiter, checkpoint)
 
-    out, report = solve_on_path(system_path(material, V, cmask, solver), build, work)
+    out, report = solve_on_path(system_path(material, V, cmask, solver, squares=squares), build, work)
     # the fields are solved and nothing solves with this factor again: free it (keeping its name and
     # size for the result) before the next mesh (a remesh pass or the twin) is factored beside it
     factor = out["op"].factor
@@ -125,7 +125,10 @@ def _contact_and_fields(op, ops, top, cand, R, P, band, active_width, maxiter, c
     xc = top.x[cand]
     hc = -(xc**2) / (2 * R)
     centre = 0.5 * (band[0] + band[1])
-    sol = solve_load_control(w_top[cand], hc, P, active=np.abs(xc - centre) <= active_width, maxiter=maxiter)
+    # the active set may take in every candidate and shed them one by one (nodes packed at a thin
+    # leading-edge layer, whose gaps are all near zero): twice the candidates bounds that walk
+    limit = maxiter if maxiter is not None else max(100, 2 * xc.size)
+    sol = solve_load_control(w_top[cand], hc, P, active=np.abs(xc - centre) <= active_width, maxiter=limit)
     act = np.flatnonzero(sol.active)
     if act[0] == 0 or act[-1] == xc.size - 1:
         raise _BandEdge()
@@ -175,10 +178,10 @@ def rolling_cylinder(
     resolution=6,
     contact_band=1.5,
     domain=None,
-    grading=1.5,
+    grading=None,
     fold=1e-4,
     solver="auto",
-    maxiter=100,
+    maxiter=None,
     keep_fields=False,
     vtk=None,
     estimate=True,
@@ -208,9 +211,12 @@ def rolling_cylinder(
         in relaxed Hertz half-widths ``a_0``.
     domain : float, optional
         Block half-width = depth (m); default :func:`domain_size`.
-    grading : float
+    grading : float, optional
         Element growth ratio, in (1, 2]: outside the core (uniform mesh; 1.2 and 2 give
-        the same friction to 0.1 %, the far field being smooth) or everywhere (graded).
+        the same friction to 0.1 %, the far field being smooth) or everywhere (graded; on the
+        quadtree, one plus the growth of the element size per unit distance from the contact).
+        Default :data:`~fem_reference.rolling_inputs.TENSOR_GRADING` (1.5) on the tensor meshes,
+        :data:`~fem_reference.rolling_inputs.QUADTREE_GRADING` (1.25) on the quadtree.
     fold : float
         Tolerance for folding inactive Prony terms; 0 keeps every term. Uniform mesh:
         terms with ``V tau_k < fold * h`` are dropped and those with ``V tau_k > a_0 /
@@ -222,8 +228,8 @@ def rolling_cylinder(
         The factorisations tried, in order (:func:`fem_reference.linsolve.solver_path`):
         ``"auto"`` takes PARDISO where it is installed and SuperLU where its solves miss their
         residual; an explicit one runs alone. ``result.solver_path`` reports each step.
-    maxiter : int
-        Active-set iteration limit.
+    maxiter : int, optional
+        Active-set iteration limit; default twice the candidate nodes, at least 100.
     keep_fields : bool
         Keep quadrature-point fields in ``result.fields``.
     vtk : str or path, optional
@@ -236,10 +242,14 @@ def rolling_cylinder(
         smaller; a graded twin settles on its own edges) and, for the friction, from the gap
         between the forms: ``result.error_estimate``, and a warning where one exceeds its
         :data:`ESTIMATE_LIMIT`. ``False`` skips the twin.
-    mesh : {"graded", "uniform"}
-        ``"graded"`` (the default) grades the mesh geometrically toward the contact edges and the
-        leading-edge layers (:mod:`fem_reference.graded`) and remeshes until the edges settle (at
-        most ``passes`` meshes): its cost follows the contact, whatever the modulus ratio.
+    mesh : {"graded", "quadtree", "uniform"}
+        ``"graded"`` (the default) grades a tensor mesh geometrically toward the contact edges and
+        the leading-edge layers (:mod:`fem_reference.graded`) and remeshes until the edges settle
+        (at most ``passes`` meshes): its cost follows the contact, whatever the modulus ratio.
+        ``"quadtree"`` grades squares toward the same edges and layers in both directions
+        (:mod:`fem_reference.quadtree`, :func:`fem_reference.graded.graded_quadtree`): no element
+        is longer than it is wide and the element count grows with the logarithm of the block, not
+        its size; every term is carried by its outflow values, and PARDISO solves that form.
         ``"uniform"`` meshes a uniform core of ``h = a_inf / resolution`` over the relaxed contact
         band, whose element count grows with ``E_inf / E0``; where its factor cannot fit in the
         memory available it is refused before anything is assembled
@@ -288,8 +298,13 @@ def rolling_cylinder(
     if mesh == "uniform":
         material, terms, hs, out, npass = _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw)
     else:
+        if mesh == "quadtree":
+            # every term carried by its outflow values: the couplings stay within an element and its
+            # upstream faces, and on squares PARDISO solves that form (see system_path)
+            kw = dict(kw, condense=False if condense == "auto" else condense, squares=True)
+        plan = graded_quadtree if mesh == "quadtree" else graded_half_space
         material, terms, hs, out, npass = _run_graded(
-            material, R, P, V, n_res, ratio, fold, domain, layer_floor, passes, kw
+            material, R, P, V, n_res, ratio, fold, domain, layer_floor, passes, kw, plan
         )
     if estimate and V > 0 and material.relaxation_times.size:
         # a solid that does not dissipate has no friction to estimate: its value is round-off
@@ -312,9 +327,9 @@ def _layer(material, V, hs, mesh):
     resolved layer spans, and whether this one is resolved."""
     taus = material.relaxation_times
     layer = float(V * np.min(taus)) if taus.size and V > 0 else float("inf")
-    h_min = float(np.min(np.diff(hs.x)))
-    # the graded mesh puts LAYER_ELEMENTS elements across a layer it resolves (graded_half_space)
-    across = LAYER_ELEMENTS if mesh == "graded" else 1
+    h_min = hs.element_size if mesh == "quadtree" else float(np.min(np.diff(hs.x)))
+    # the graded meshes put LAYER_ELEMENTS elements across a layer they resolve (graded_half_space)
+    across = 1 if mesh == "uniform" else LAYER_ELEMENTS
     return layer, h_min, across, layer >= across * h_min * (1 - 1e-6)
 
 
@@ -386,7 +401,7 @@ def _run_uniform(material, R, P, V, n_res, band, ratio, fold, domain, kw):
     return material, terms, hs, out, 1
 
 
-def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, passes, kw):
+def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, passes, kw, plan):
     edges = initial_edges(material, R, P, V)
     L0 = domain_size(material, R, P, V) if domain is None else check_positive("domain", domain)
     a_c = 0.5 * (edges[1] - edges[0])
@@ -397,7 +412,7 @@ def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, pass
         # finest elements it may get (folding against smaller elements keeps a superset of the terms)
         material, terms = fold_terms(given, V, SINGLE_TERM_FLOOR * a_c / n_res, L0, fold)
     L = domain_size(material, R, P, V) if domain is None else L0
-    settle = partial(_settle, material, R, P, V, n_res, layer_floor=layer_floor, passes=passes, kw=kw)
+    settle = partial(_settle, material, R, P, V, n_res, layer_floor=layer_floor, passes=passes, kw=kw, plan=plan)
     hs, out, npass = settle(edges, ratio, L)
     # the twin's block may be half the least a result takes: it only measures a change
     r2, L2 = _coarser(ratio, L, 0.5 * MIN_SPAN * 0.5 * (out["edges"][1] - out["edges"][0]))
@@ -405,9 +420,10 @@ def _run_graded(material, R, P, V, n_res, ratio, fold, domain, layer_floor, pass
     return material, terms, hs, out, npass
 
 
-def _settle(material, R, P, V, n_res, edges, ratio, L, *, layer_floor, passes, kw, coarsen=1.0, span=MIN_SPAN):
-    """Mesh about ``edges`` and solve, remeshing about the edges found until they settle (at most
-    ``passes`` meshes): ``(mesh, solved, passes used)``."""
+def _settle(material, R, P, V, n_res, edges, ratio, L, *, layer_floor, passes, kw, plan, coarsen=1.0, span=MIN_SPAN):
+    """Mesh about ``edges`` by ``plan`` (:func:`~fem_reference.graded.graded_half_space` or
+    :func:`~fem_reference.graded.graded_quadtree`) and solve, remeshing about the edges found until
+    they settle (at most ``passes`` meshes): ``(mesh, solved, passes used)``."""
     trail, lead = edges
     widen = 0.5
     out = hs = last_trail = None
@@ -416,7 +432,7 @@ def _settle(material, R, P, V, n_res, edges, ratio, L, *, layer_floor, passes, k
         h_edge = coarsen * a_c / n_res
         if L < span * a_c:
             raise InputError(f"domain must be >= {span:g} contact half-widths = {span * a_c!r} m, got {L!r}")
-        hs = graded_half_space(
+        hs = plan(
             (trail, lead),
             material,
             V,

@@ -27,6 +27,13 @@ def domain_size(material, radius, load, speed, *, contact_factor=40.0, retardati
     return max(contact_factor * a0, retardation_factor * ell_r)
 
 
+# default growth of the element size per unit distance, plus one. A standard solid (E_inf/E0 = 30) at
+# its friction peak on the quadtree: the dissipation form 0.98 % from the BEM at 1.5, 0.08 % at 1.25
+# and 0.05 % at 1.15 (the moment form -0.24, -0.13, -0.11 %), at 0.48, 1.2 and 2.5 thousand squares
+TENSOR_GRADING = 1.5
+QUADTREE_GRADING = 1.25
+
+
 def check_inputs(material, radius, load, speed, resolution, contact_band, maxiter, grading, fold, mesh):
     """The validated inputs of :func:`fem_reference.rolling_cylinder`, each error naming its parameter."""
     if not isinstance(material, Material):
@@ -36,7 +43,10 @@ def check_inputs(material, radius, load, speed, resolution, contact_band, maxite
     V = check_positive("speed", speed, allow_zero=True)
     n_res = check_int("resolution", resolution, 1, 200)
     band = check_positive("contact_band", contact_band)
-    maxiter = check_int("maxiter", maxiter, 1)
+    maxiter = None if maxiter is None else check_int("maxiter", maxiter, 1)
+    if grading is None:
+        # the quadtree's squares grow in both directions, the tensor meshes' rows and columns in one
+        grading = QUADTREE_GRADING if mesh == "quadtree" else TENSOR_GRADING
     ratio = check_positive("grading", grading)
     if not 1.0 < ratio <= 2.0:
         raise InputError(f"grading must be in (1, 2], got {grading!r}")
@@ -45,8 +55,8 @@ def check_inputs(material, radius, load, speed, resolution, contact_band, maxite
     fold = check_positive("fold", fold, allow_zero=True)
     if fold >= 1:
         raise InputError(f"fold must be in [0, 1), got {fold!r}")
-    if mesh not in ("uniform", "graded"):
-        raise InputError(f"mesh must be 'uniform' or 'graded', got {mesh!r}")
+    if mesh not in ("uniform", "graded", "quadtree"):
+        raise InputError(f"mesh must be 'uniform', 'graded' or 'quadtree', got {mesh!r}")
     return R, P, V, n_res, band, maxiter, ratio, fold
 
 

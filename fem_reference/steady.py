@@ -102,6 +102,7 @@ class SteadyOperator:
             self.residual, self.residual_limit = res, limit
         u = np.zeros(forces.shape)
         u[self.free] = x[: self.free.size]
+        u = self.ops.complete(u)
         off = self.free.size
         p = self.ops.N_p @ x[off : off + npr] * E
         off += npr
@@ -175,11 +176,11 @@ def condensed_terms(ops, material, speed, condense):
     return cmask & (speed * material.relaxation_times > 0)
 
 
-def system_path(material, speed, cmask, solver="auto"):
+def system_path(material, speed, cmask, solver="auto", squares=False):
     """The :func:`~fem_reference.linsolve.solver_path` of the steady system whose condensed terms
-    are ``cmask``."""
+    are ``cmask``, on a mesh of squares or not."""
     moving = speed * material.relaxation_times > 0
-    return solver_path(solver, carries=bool(np.any(moving & ~cmask)), condenses=bool(np.any(cmask)))
+    return solver_path(solver, carries=bool(np.any(moving & ~cmask)), condenses=bool(np.any(cmask)), squares=squares)
 
 
 def steady_operator(ops, material, speed, *, solver="auto", condense=False, memory=None):
@@ -209,7 +210,7 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False, memo
     g = material.moduli / material.E_inf
     cmask = condensed_terms(ops, material, speed, condense)
 
-    free = np.setdiff1d(np.arange(B.shape[1]), _fixed_dofs(ops.basis))
+    free = np.setdiff1d(np.arange(B.shape[1]), np.concatenate([_fixed_dofs(ops.basis), ops.constrained]))
     Bf = B[:, free]
     ncomp = ops.ncomp
     eye = sp.identity(ncomp, format="csr")
