@@ -93,6 +93,27 @@ def initial_edges(material, radius, load, speed):
     return -a, a
 
 
+def _layer_sizes(edges, material, speed, resolution, layer_floor):
+    """``(h_edge, thinnest, h_lead, resolved)``: the edge elements, the thinnest leading-edge layer
+    ``V tau_k``, the elements toward it and whether they resolve it (m; see the module docstring)."""
+    trail, lead = edges
+    h_edge = 0.5 * (lead - trail) / resolution
+    ell = speed * material.relaxation_times
+    ell = ell[ell > 0]
+    floor = layer_floor * h_edge
+    thinnest = float(ell.min()) if ell.size else float("inf")
+    if ell.size == 1 and thinnest >= SINGLE_TERM_FLOOR * h_edge:
+        # one term (a standard solid): its fine zone adds rows of elements, logarithmic in the
+        # layer's thinness, and no other memory spans them; the floor is for many terms, whose
+        # memories all cross the fine elements
+        floor = min(floor, thinnest)
+    # a layer at or above the floor gets LAYER_ELEMENTS elements; a thinner one is left at the floor
+    # and reported unresolved: refining toward it would add rows of elements along the whole surface
+    # (and lengthen the condensed memories, in elements) for a peak still not resolved
+    h_lead = min(thinnest / LAYER_ELEMENTS if thinnest >= floor else floor, h_edge)
+    return h_edge, thinnest, h_lead, floor <= thinnest < np.inf
+
+
 def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25, layer_floor=0.01, coarsen=1.0):
     """A :class:`~fem_reference.mesh.HalfSpaceMesh` graded toward the contact ``edges``.
 
@@ -120,22 +141,7 @@ def graded_half_space(edges, material, speed, *, resolution, length, ratio=1.25,
     from .mesh import HalfSpaceMesh, half_space_boundaries
 
     trail, lead = edges
-    a_c = 0.5 * (lead - trail)
-    h_edge = a_c / resolution
-    ell = speed * material.relaxation_times
-    ell = ell[ell > 0]
-    floor = layer_floor * h_edge
-    thinnest = float(ell.min()) if ell.size else float("inf")
-    if ell.size == 1 and thinnest >= SINGLE_TERM_FLOOR * h_edge:
-        # one term (a standard solid): its fine zone adds rows of elements, logarithmic in the
-        # layer's thinness, and no other memory spans them; the floor is for many terms, whose
-        # memories all cross the fine elements
-        floor = min(floor, thinnest)
-    # a layer at or above the floor gets LAYER_ELEMENTS elements; a thinner one is left at the floor
-    # and reported unresolved: refining toward it would add rows of elements along the whole surface
-    # (and lengthen the condensed memories, in elements) for a peak still not resolved
-    h_lead = min(thinnest / LAYER_ELEMENTS if thinnest >= floor else floor, h_edge)
-    resolved = floor <= thinnest < np.inf
+    h_edge, thinnest, h_lead, resolved = _layer_sizes(edges, material, speed, resolution, layer_floor)
     if length > MAX_SPAN * h_lead:
         # a block many decades larger than the layer (the wake of a slow creep mode at high speed):
         # elements of the layer's size would be needles across it, and elements in between solved no
@@ -169,16 +175,7 @@ def graded_quadtree(edges, material, speed, *, resolution, length, ratio=1.25, l
     from .quadtree import quadtree_half_space
 
     trail, lead = edges
-    a_c = 0.5 * (lead - trail)
-    h_edge = a_c / resolution
-    ell = speed * material.relaxation_times
-    ell = ell[ell > 0]
-    floor = layer_floor * h_edge
-    thinnest = float(ell.min()) if ell.size else float("inf")
-    if ell.size == 1 and thinnest >= SINGLE_TERM_FLOOR * h_edge:
-        floor = min(floor, thinnest)
-    h_lead = min(thinnest / LAYER_ELEMENTS if thinnest >= floor else floor, h_edge)
-    resolved = floor <= thinnest < np.inf
+    h_edge, thinnest, h_lead, resolved = _layer_sizes(edges, material, speed, resolution, layer_floor)
     h_edge, h_lead = coarsen * h_edge, coarsen * h_lead
     h_zone = h_edge / LAYER_ELEMENTS
     # each edge gets LAYER_ELEMENTS elements across a zone one edge element wide about it (as the
