@@ -100,6 +100,11 @@ class HalfSpaceMesh:
     def n_elements(self):
         return (self.x.size - 1) * (self.y.size - 1)
 
+    @property
+    def smallest_element(self):
+        """Smallest element width along the flow (m)."""
+        return float(np.min(np.diff(self.x)))
+
 
 def half_space_mesh(core, h, *, x_range, depth, core_depth, ratio=1.2):
     """Build the graded mesh.

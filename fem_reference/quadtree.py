@@ -47,31 +47,22 @@ def _requested(level, i, j, length, segments, ratio):
 
 
 def _refine(length, segments, ratio):
-    """Leaves ``(level, i, j)`` split until each is no larger than the size requested in it."""
-    level = np.zeros(2, dtype=np.int64)
+    """Leaves ``{level: {(i, j), ...}}`` split until each is no larger than the size requested in it."""
+    level = 0
     i = np.array([0, 1], dtype=np.int64)
     j = np.zeros(2, dtype=np.int64)
-    leaves = []
-    while level.size:
+    tree = {}
+    while i.size:
         side = length / 2.0**level
-        split = side > _requested(level, i, j, length, segments, ratio) * (1 + 1e-12)
-        if np.any(split & (level >= MAX_LEVEL)):
+        split = side > _requested(np.full(i.shape, level), i, j, length, segments, ratio) * (1 + 1e-12)
+        if np.any(split) and level >= MAX_LEVEL:
             raise ValueError(f"the mesh would need squares below L / 2^{MAX_LEVEL}: sizes too small for the block")
-        leaves.append((level[~split], i[~split], j[~split]))
-        level, i, j = level[split], i[split], j[split]
+        tree[level] = set(zip(map(int, i[~split]), map(int, j[~split])))
         a, b = np.array([0, 1, 0, 1]), np.array([0, 0, 1, 1])
-        level = np.repeat(level + 1, 4)
-        i = (2 * i[:, None] + a[None, :]).ravel()
-        j = (2 * j[:, None] + b[None, :]).ravel()
-    return [set(zip(map(int, lv), map(int, ii), map(int, jj))) for lv, ii, jj in leaves for _ in [0]]
-
-
-def _by_level(leaves):
-    out = {}
-    for group in leaves:
-        for lv, i, j in group:
-            out.setdefault(lv, set()).add((i, j))
-    return out
+        i = (2 * i[split][:, None] + a[None, :]).ravel()
+        j = (2 * j[split][:, None] + b[None, :]).ravel()
+        level += 1
+    return tree
 
 
 def _covering(tree, level, i, j):
@@ -137,6 +128,11 @@ class QuadtreeMesh:
     def n_elements(self):
         return self.mesh.t.shape[1]
 
+    @property
+    def smallest_element(self):
+        """Side of the smallest square (m)."""
+        return self.element_size
+
 
 def quadtree_half_space(segments, *, length, ratio=1.5):
     """Build the mesh for ``segments`` ``[(x_lo, x_hi, size), ...]`` on the surface (m).
@@ -151,7 +147,7 @@ def quadtree_half_space(segments, *, length, ratio=1.5):
     segments = [(float(lo), float(hi), float(s)) for lo, hi, s in segments]
     if not segments or any(s <= 0 or hi < lo for lo, hi, s in segments):
         raise ValueError("need segments (x_lo, x_hi, size) with x_lo <= x_hi and size > 0")
-    tree = _balance(_by_level(_refine(float(length), segments, ratio)))
+    tree = _balance(_refine(float(length), segments, ratio))
     top = max(lv for lv, cells in tree.items() if cells)
     lv = np.concatenate([np.full(len(c), v, dtype=np.int64) for v, c in tree.items() if c])
     ij = np.concatenate([np.array(sorted(c), dtype=np.int64).reshape(-1, 2) for v, c in tree.items() if c])

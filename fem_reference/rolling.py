@@ -327,7 +327,7 @@ def _layer(material, V, hs, mesh):
     resolved layer spans, and whether this one is resolved."""
     taus = material.relaxation_times
     layer = float(V * np.min(taus)) if taus.size and V > 0 else float("inf")
-    h_min = hs.element_size if mesh == "quadtree" else float(np.min(np.diff(hs.x)))
+    h_min = hs.smallest_element
     # the graded meshes put LAYER_ELEMENTS elements across a layer they resolve (graded_half_space)
     across = 1 if mesh == "uniform" else LAYER_ELEMENTS
     return layer, h_min, across, layer >= across * h_min * (1 - 1e-6)
