@@ -137,13 +137,13 @@ class QuadtreeMesh:
 def quadtree_half_space(segments, *, length, ratio=1.5):
     """Build the mesh for ``segments`` ``[(x_lo, x_hi, size), ...]`` on the surface (m).
 
-    ``ratio`` in (1, 2] bounds the growth of the requested size, ``(ratio - 1)`` per unit distance;
+    ``ratio`` > 1 bounds the growth of the requested size, ``(ratio - 1)`` per unit distance;
     the squares' sides themselves double across the faces where they change.
     """
     from skfem import MeshQuad
 
-    if not 1.0 < ratio <= 2.0:
-        raise ValueError(f"ratio must be in (1, 2], got {ratio!r}")
+    if not ratio > 1.0:
+        raise ValueError(f"ratio must be > 1, got {ratio!r}")
     segments = [(float(lo), float(hi), float(s)) for lo, hi, s in segments]
     if not segments or any(s <= 0 or hi < lo for lo, hi, s in segments):
         raise ValueError("need segments (x_lo, x_hi, size) with x_lo <= x_hi and size > 0")
