@@ -53,8 +53,9 @@ DEFLATE_MAX = 512
 DEFLATE_TRIGGER = 100 * 1e-8
 # a solve with more right-hand sides than PROBE_COLUMNS is preceded by a probe, its first column
 # alone: if PARDISO's own refinement took more than DEFLATE_STEPS steps there, the factor is deflated
-# before the rest are solved. Each of those steps costs a solve for every column (the flexibility's
-# tens to hundreds), while a deflated solve costs two and converges by DEFLATE_TOL per step
+# before the rest are solved, and the solve of all columns takes at most DEFLATE_STEPS of them either
+# way. Each of those steps costs a solve for every column (the flexibility's tens to hundreds), while
+# a deflated solve costs two and converges by DEFLATE_TOL per step
 DEFLATE_STEPS = 8
 PROBE_COLUMNS = 4
 
@@ -193,7 +194,8 @@ class _Pardiso:
 
         self._solver = pypardiso.PyPardisoSolver()
         self._solver.set_matrix_type(11)  # real non-symmetric
-        for key, value in {1: 1, 2: 2, 8: 20, 10: 8, 11: 1, 13: 1, 18: -1}.items():
+        self._steps = 20  # PARDISO's own refinement steps at most (iparm 8); none once deflated
+        for key, value in {1: 1, 2: 2, 8: self._steps, 10: 8, 11: 1, 13: 1, 18: -1}.items():
             self._solver.set_iparm(key, value)  # 1-based iparm: METIS, refinement, matching, report fill
         self._solver.set_statistical_info_off()
         self._A = sp.csr_matrix(A)
@@ -206,7 +208,17 @@ class _Pardiso:
         self.extended = None  # A in extended precision, for refinement of the deflated solve
 
     def _plain(self, b):
-        x = self._solver.solve(self._A, np.ascontiguousarray(np.asarray(b, dtype=float)))
+        b = np.ascontiguousarray(np.asarray(b, dtype=float))
+        steps = self._steps
+        if b.ndim == 2 and b.shape[1] > PROBE_COLUMNS:
+            # each of PARDISO's refinement steps solves every column: a solve of many columns pays for
+            # at most DEFLATE_STEPS of them, whatever one probe column took (the columns of one
+            # flexibility need different numbers of steps); one left off is deflated by solve_refined
+            self._solver.set_iparm(8, min(steps, DEFLATE_STEPS))
+        try:
+            x = self._solver.solve(self._A, b)
+        finally:
+            self._solver.set_iparm(8, steps)
         self.refinement_steps = int(self._solver.get_iparm(7))
         return x
 
@@ -256,6 +268,7 @@ class _Pardiso:
         """
         if self._Q is not None:
             return False
+        self._steps = 0
         self._solver.set_iparm(8, 0)
         n = self._A.shape[0]
         rng = np.random.default_rng(seed)
