@@ -11,7 +11,7 @@ order between successive rows, ``log(e_i / e_{i+1}) / log(s_i / s_{i+1})`` for a
 - ``domain``: the same at ``V lambda = 10 a0``, resolution 4, over the block's half-width
   ``L`` (= depth) in retardation lengths; the truncation error is taken against the largest
   block, so that the mesh error, common to all rows, cancels;
-- ``graded``: the default-style mesh graded toward the contact (``mesh="quadtree"``) as a family:
+- ``graded``: the squares graded toward the contact in both directions (``mesh="quadtree"``) as a family:
   every size the contact sets times ``c`` and the growth ``grading - 1`` times ``c``, so that each
   element shrinks with ``c`` (:func:`graded_family_case`), on a block of ``4000 a0`` (truncation
   about 1e-6, below the mesh error of every row), against Hunter for standard solids at
@@ -53,14 +53,14 @@ def observed_orders(steps, errors):
 FAMILY_BLOCK = 4000.0  # the graded family's block half-width, in relaxed half-widths a0
 
 
-def graded_family_case(ratio, c, ell=1.0, mesh="quadtree"):
+def graded_family_case(ratio, c, ell=1.0):
     """Hunter's standard solid (E0 = 1 MPa, ``E_inf = ratio E0``, creep time 10 ms, nu = 0.5;
-    R = 10 mm, 1000 N/m) rolling at ``V lambda = ell a0`` on the graded mesh of scale ``c``:
-    resolution ``8 / c`` and growth ``1 + c (g - 1)`` about the default ``g``, on a block of
+    R = 10 mm, 1000 N/m) rolling at ``V lambda = ell a0`` on the quadtree of scale ``c``:
+    resolution ``8 / c`` and growth ``1 + c (g - 1)`` about its default ``g``, on a block of
     :data:`FAMILY_BLOCK` ``a0``; the errors against Hunter (:func:`viscobem_bench.fem.hunter_errors`)."""
     from bem import Material
     from fem_reference import rolling_cylinder
-    from fem_reference.rolling_inputs import QUADTREE_GRADING, TENSOR_GRADING
+    from fem_reference.rolling_inputs import QUADTREE_GRADING
     from validation.references import hunter
     from validation.references.hertz import line_contact
 
@@ -68,7 +68,6 @@ def graded_family_case(ratio, c, ell=1.0, mesh="quadtree"):
     R, P = 0.01, 1000.0
     a0 = line_contact(m.E0, m.nu, R, P).a
     V = ell * a0 / float(m.creep_times[0])
-    g = QUADTREE_GRADING if mesh == "quadtree" else TENSOR_GRADING
     t0 = time.perf_counter()
     r = rolling_cylinder(
         m,
@@ -76,9 +75,9 @@ def graded_family_case(ratio, c, ell=1.0, mesh="quadtree"):
         load=P,
         speed=V,
         resolution=round(8 / c),
-        grading=1 + c * (g - 1),
+        grading=1 + c * (QUADTREE_GRADING - 1),
         domain=FAMILY_BLOCK * a0,
-        mesh=mesh,
+        mesh="quadtree",
         estimate=False,
     )
     wall = time.perf_counter() - t0
