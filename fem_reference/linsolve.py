@@ -22,6 +22,8 @@ import scipy.sparse.linalg as spla
 
 from bem.errors import ConvergenceError, InputError
 
+from .ordering import PIVOT_THRESHOLD, equilibrate, nested_dissection
+
 __all__ = [
     "factorize",
     "SOLVERS",
@@ -158,9 +160,18 @@ class _SuperLU:
             budget = float(memory) if budget is None else min(budget, float(memory))
         try:
             with _address_space_budget(budget):
-                # equilibration (row and column scaling) keeps the residual of the condensed
-                # rubber systems at 2e-10 where the unscaled factorisation stalls at 7e-8
-                self._lu = spla.splu(sp.csc_matrix(A), permc_spec="COLAMD", options={"Equil": True})
+                # scaled so that every row and column peaks at one (the units of displacements,
+                # pressures and transported strains differ by orders): the pivot threshold then
+                # compares like with like, and the residual of the condensed rubber systems stays
+                # at 2e-10 where the unscaled factorisation stalls at 7e-8
+                self._row, self._col, scaled = equilibrate(A)
+                self._order = nested_dissection(scaled)
+                self._lu = spla.splu(
+                    sp.csc_matrix(scaled[self._order][:, self._order]),
+                    permc_spec="NATURAL",
+                    diag_pivot_thresh=PIVOT_THRESHOLD,
+                    options={"Equil": False, "SymmetricMode": True},
+                )
         except (MemoryError, RuntimeError) as err:
             # SuperLU reports a failed allocation as MemoryError, or as RuntimeError ("SUPERLU_MALLOC
             # fails ...") where it fails in the ordering
@@ -170,10 +181,15 @@ class _SuperLU:
                 f"SuperLU's factor of {A.shape[0]} unknowns ({A.nnz} entries) needs more than the "
                 f"{budget / 2**30:.3g} GiB of memory available"
             ) from None
-        self.nnz = int(self._lu.L.nnz + self._lu.U.nnz)  # entries of the factors (fill-in included)
+        self.nnz = int(self._lu.nnz)  # entries SuperLU stores for L and U (read without copying them)
 
     def solve(self, b):
-        return self._lu.solve(np.asarray(b, dtype=float))
+        b = np.asarray(b, dtype=float)
+        row = self._row if b.ndim == 1 else self._row[:, None]
+        col = self._col if b.ndim == 1 else self._col[:, None]
+        x = np.empty_like(b)
+        x[self._order] = self._lu.solve(np.ascontiguousarray((row * b)[self._order]))
+        return col * x
 
     def diagnostics(self):
         return {"solver": self.name, "factor_nonzeros": self.nnz}
