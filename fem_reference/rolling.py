@@ -185,7 +185,7 @@ def rolling_cylinder(
     keep_fields=False,
     vtk=None,
     estimate=True,
-    mesh="graded",
+    mesh="quadtree",
     condense="auto",
     layer_floor=0.01,
     passes=8,
@@ -203,8 +203,8 @@ def rolling_cylinder(
     speed : float
         Rolling speed ``V`` (m/s), ``>= 0``.
     resolution : int
-        ``mesh="graded"``: elements (9-node) per contact half-width at the contact edges and at
-        the surface. ``mesh="uniform"``: core elements per glassy Hertz half-width ``a_inf``,
+        ``mesh="quadtree"`` or ``"graded"``: elements (9-node) per contact half-width at the
+        contact edges and at the surface. ``mesh="uniform"``: core elements per glassy Hertz half-width ``a_inf``,
         ``h = a_inf / resolution``. Node spacing is ``h / 2``.
     contact_band : float
         Uniform mesh: half-width of the candidate contact band and of the uniform core,
@@ -242,18 +242,18 @@ def rolling_cylinder(
         smaller; a graded twin settles on its own edges) and, for the friction, from the gap
         between the forms: ``result.error_estimate``, and a warning where one exceeds its
         :data:`ESTIMATE_LIMIT`. ``False`` skips the twin.
-    mesh : {"graded", "quadtree", "uniform"}
-        ``"graded"`` (the default) grades a tensor mesh geometrically toward the contact edges and
-        the leading-edge layers (:mod:`fem_reference.graded`) and remeshes until the edges settle
-        (at most ``passes`` meshes): its cost follows the contact, whatever the modulus ratio.
-        ``"quadtree"`` grades squares toward the same edges and layers in both directions
-        (:mod:`fem_reference.quadtree`, :func:`fem_reference.graded.graded_quadtree`): no element
-        is longer than it is wide and the element count grows with the logarithm of the block, not
-        its size; every term is carried by its outflow values, and PARDISO solves that form.
-        ``"uniform"`` meshes a uniform core of ``h = a_inf / resolution`` over the relaxed contact
-        band, whose element count grows with ``E_inf / E0``; where its factor cannot fit in the
-        memory available it is refused before anything is assembled
-        (:func:`fem_reference.rolling_inputs.check_uniform_fits`).
+    mesh : {"quadtree", "graded", "uniform"}
+        ``"quadtree"`` (the default) grades squares toward the contact edges and the leading-edge
+        layers in both directions (:mod:`fem_reference.quadtree`,
+        :func:`fem_reference.graded.graded_quadtree`) and remeshes until the edges settle (at most
+        ``passes`` meshes): no element is longer than it is wide, the element count grows with the
+        logarithm of the block over the contact, not with the block or the modulus ratio, and every
+        term is carried by its outflow values (local couplings, whatever ``V tau_k``).
+        ``"graded"`` grades a tensor mesh the same way (:mod:`fem_reference.graded`): its finest
+        columns and rows cross the whole block. ``"uniform"`` meshes a uniform core of
+        ``h = a_inf / resolution`` over the relaxed contact band, whose element count grows with
+        ``E_inf / E0``; where its factor cannot fit in the memory available it is refused before
+        anything is assembled (:func:`fem_reference.rolling_inputs.check_uniform_fits`).
     condense : {"auto", True, False}
         Eliminate the viscous strains through their truncated memory instead of carrying them
         by the elements' outflow values (:mod:`fem_reference.steady`); ``"auto"``: the terms

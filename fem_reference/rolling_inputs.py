@@ -86,6 +86,6 @@ def check_uniform_fits(x, y, available):
     if need > available:
         raise InputError(
             f"mesh='uniform' needs at least {need / 2**30:.3g} GiB for its {n:.3g} unknowns at this resolution "
-            f"and modulus ratio, more than the {available / 2**30:.3g} GiB available: use the default "
-            f"mesh='graded', whose cost does not grow with E_inf/E0, or a lower resolution"
+            f"and modulus ratio, more than the {available / 2**30:.3g} GiB available: use "
+            f"the default mesh='quadtree', whose cost does not grow with E_inf/E0, or a lower resolution"
         )

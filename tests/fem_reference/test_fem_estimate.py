@@ -54,14 +54,15 @@ def test_estimate_covers_an_error_both_forms_share():
 
 @pytest.mark.slow
 def test_the_gap_between_the_forms_bounds_the_estimate_from_below():
-    # Hunter's solid at E_inf/E0 = 10 two decades below its friction peak: the moment form is
-    # -0.45 % off, its change on the twin about 0.1 %, the forms 0.64 % apart; the gap is the
-    # estimate, and it covers the error
+    # Hunter's solid at E_inf/E0 = 10 two decades below its friction peak on the tensor mesh: the
+    # moment form is -0.45 % off, its change on the twin about 0.1 %, the forms 0.64 % apart; the gap
+    # is the estimate, and it covers the error. (On the default squares the twin's change leads:
+    # +0.27 % off, estimate 1.6 %.)
     from viscobem_bench.fem import high_ratio_peak_speed
 
     m = Material.standard_linear_solid(E0=2e6, E_inf=2e7, relaxation_time=0.01, nu=0.5)
     V = 0.01 * high_ratio_peak_speed(10.0)
-    r = rolling_cylinder(m, radius=0.02, load=500.0, speed=V)
+    r = rolling_cylinder(m, radius=0.02, load=500.0, speed=V, mesh="graded")
     h = hunter.rolling_cylinder(m, radius=0.02, load=500.0, speed=V)
     gap = abs(r.friction_dissipation / r.friction - 1)
     assert r.error_estimate["friction"] == pytest.approx(gap, rel=1e-12)
@@ -92,14 +93,14 @@ def test_no_estimate_asked_for_nor_for_an_elastic_solid():
 
 
 def test_a_twin_that_fails_leaves_the_result_and_says_so(monkeypatch):
-    mesh = rolling.graded_half_space
+    mesh = rolling.graded_quadtree
 
     def no_twin(*args, coarsen=1.0, **kwargs):
         if coarsen != 1.0:
             raise MemoryError("stand-in: the twin's factor does not fit")
         return mesh(*args, **kwargs)
 
-    monkeypatch.setattr(rolling, "graded_half_space", no_twin)
+    monkeypatch.setattr(rolling, "graded_quadtree", no_twin)
     m = _standard_solid(10.0)
     r = rolling_cylinder(m, radius=R, load=P, speed=_speed(m, 1.0), resolution=2)
     assert r.success and r.error_estimate == {}
