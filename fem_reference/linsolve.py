@@ -160,10 +160,9 @@ class _SuperLU:
             budget = float(memory) if budget is None else min(budget, float(memory))
         try:
             with _address_space_budget(budget):
-                # scaled so that every row and column peaks at one (the units of displacements,
-                # pressures and transported strains differ by orders): the pivot threshold then
-                # compares like with like, and the residual of the condensed rubber systems stays
-                # at 2e-10 where the unscaled factorisation stalls at 7e-8
+                # scaled first (the units of displacements, pressures and transported strains
+                # differ by orders): the pivot threshold then compares like with like, and without
+                # scaling the condensed rubber systems' residual stalled at 7e-8 instead of 2e-10
                 self._row, self._col, scaled = equilibrate(A)
                 self._order = nested_dissection(scaled)
                 self._lu = spla.splu(

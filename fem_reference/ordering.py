@@ -21,9 +21,9 @@ __all__ = ["equilibrate", "nested_dissection", "PIVOT_THRESHOLD"]
 
 # SuperLU takes the diagonal pivot unless it is below this share of its column's largest entry.
 # On the 8-term rubber's carried system at its friction peak (120,458 unknowns) with this order:
-# factor entries 1.87e7 at 0 (singular: no pivoting at all), 3.7e7 at 1e-4, 5.3e7 at 1e-3, 1.1e8
-# at 1e-2, 1.4e8 at 0.1; COLAMD at SuperLU's default of 1 took 1.48e8. The residual after three
-# refinement steps was the same (6.6e-6 for a random right-hand side) from 1e-4 up
+# factor entries 3.4e7 at 1e-4, 4.9e7 at 1e-3, 1.0e8 at 1e-2, about 1.4e8 at 0.1, and a singular
+# factor at 0 (no pivoting at all); COLAMD at SuperLU's default of 1 took 1.48e8. The residual after
+# three refinement steps was the same (about 7e-6 for a random right-hand side) at every threshold
 PIVOT_THRESHOLD = 1e-4
 
 
