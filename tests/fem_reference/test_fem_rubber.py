@@ -451,13 +451,14 @@ def test_pardiso_miss_falls_back_to_superlu_on_the_same_system_then_on_the_carri
     # The "auto" path on real PARDISO: after a miss, SuperLU on the condensed system within
     # CONDENSED_FILL times PARDISO's entries, then SuperLU on the carried form. Forced by a limit no
     # solve can reach, so every step misses and the last one's result says so (only the path is
-    # tested here); with no room for SuperLU's factor of the condensed system, that step is skipped
+    # tested here); with no room for SuperLU's factor of the condensed system, that step is skipped.
+    # The tensor mesh's path: on squares every term is carried from the start
     from fem_reference import linsolve
 
     pytest.importorskip("pypardiso")
     monkeypatch.setattr(linsolve, "RESIDUAL_LIMIT", 1e-30)
     monkeypatch.setattr(linsolve, "FLOOR_FACTOR", 0.0)
-    kw = dict(radius=R, load=P, speed=1e-3, resolution=1, solver="auto", estimate=False)
+    kw = dict(radius=R, load=P, speed=1e-3, resolution=1, solver="auto", estimate=False, mesh="graded")
     r = rolling_cylinder(rubber(2, 10.0), **kw)
     steps = [(s["solver"], s["form"], s["outcome"][:6]) for s in r.solver_path]
     assert steps == [("pardiso", "as asked", "missed"), ("splu", "as asked", "missed"), ("splu", "carried", "missed")]
