@@ -78,8 +78,10 @@ def solve_load_control(C, h, load, *, w0=None, active=None, maxiter=100):
 
     Parameters
     ----------
-    C : (n, n) ndarray
-        Flexibility of the candidate nodes (m per N, or m per N/m in plane strain).
+    C : (n, n) ndarray or callable
+        Flexibility of the candidate nodes (m per N, or m per N/m in plane strain), or a callable
+        ``C(idx)`` returning its columns ``idx`` (``(n, idx.size)``): only the columns of the nodes
+        that enter the active set are asked for.
     h : (n,) ndarray
         Rigid heights at the nodes (m), positive toward the solid, max 0.
     load : float
@@ -92,6 +94,7 @@ def solve_load_control(C, h, load, *, w0=None, active=None, maxiter=100):
         Maximum number of active-set updates.
     """
     n = h.size
+    columns = C if callable(C) else (lambda idx: C[:, idx])
     w0 = np.zeros(n) if w0 is None else w0
     if active is None:
         active = h >= np.sort(h)[-max(3, n // 10)]
@@ -102,8 +105,9 @@ def solve_load_control(C, h, load, *, w0=None, active=None, maxiter=100):
         if idx.size == 0:
             raise ConvergenceError("contact active set became empty (load too small for the mesh?)")
         k = idx.size
+        Ca = columns(idx)
         S = np.zeros((k + 1, k + 1))
-        S[:k, :k] = C[np.ix_(idx, idx)]
+        S[:k, :k] = Ca[idx]
         S[:k, k] = -1.0
         S[k, :k] = 1.0
         rhs = np.concatenate([h[idx] - w0[idx], [load]])
@@ -111,7 +115,7 @@ def solve_load_control(C, h, load, *, w0=None, active=None, maxiter=100):
         lam = np.zeros(n)
         lam[idx] = sol[:k]
         d = sol[k]
-        gap = C @ lam + w0 - h - d
+        gap = Ca @ sol[:k] + w0 - h - d
         new = (active & (lam > 0)) | (~active & (gap < 0))
         key = new.tobytes()
         if np.array_equal(new, active):

@@ -91,7 +91,10 @@ class QuadratureOperators:
         across some faces, :func:`fem_reference.quadtree.constraint_matrix`); ``B`` already
         includes it. None where no node hangs.
     constrained : ndarray of int
-        The hanging DOFs: not unknowns of a solve.
+        The hanging DOFs (and a periodic cell's right side): not unknowns of a solve.
+    periodic : bool
+        The mesh is one period of a periodic cell (:mod:`fem_reference.periodic`): its right side's
+        DOFs are its left side's, and the flow wraps from the left end of each row to its right end.
     """
 
     basis: object
@@ -102,6 +105,7 @@ class QuadratureOperators:
     points: np.ndarray
     constraint: object = None
     constrained: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    periodic: bool = False
 
     def complete(self, u):
         """Nodal ``u`` with its hanging DOFs set from the others (``u`` itself where none hang)."""
@@ -119,12 +123,12 @@ class QuadratureOperators:
     def flow(self):
         """The rows of points as streamlines of a flow along ``-x``
         (:class:`~fem_reference.memory.Flow`): each element row takes its inflow from the elements
-        upstream of its ``x = x_max`` face."""
+        upstream of its ``x = x_max`` face (on a periodic cell, those at the row's other end)."""
         from .memory import mesh_flow
 
         nel, nqp = self.basis.dx.shape
         mesh = self.basis.mesh
-        return mesh_flow(mesh.p, mesh.t, self.points.reshape(2, nel, nqp))
+        return mesh_flow(mesh.p, mesh.t, self.points.reshape(2, nel, nqp), periodic=self.periodic)
 
     @property
     def cell(self):
@@ -138,10 +142,11 @@ class QuadratureOperators:
         return sp.kron(sp.diags(self.weights), sp.csr_matrix(d), format="csr")
 
 
-def quadrature_operators(mesh, kind="plane", hanging=None):
+def quadrature_operators(mesh, kind="plane", hanging=None, periodic=False):
     """Build :class:`QuadratureOperators` on a rectangle ``mesh`` (``skfem.MeshQuad``), whose
     ``hanging`` vertices ``(M, A, B)`` (:class:`fem_reference.quadtree.QuadtreeMesh`) hang at the
-    middle of the faces ``A``-``B`` of larger elements."""
+    middle of the faces ``A``-``B`` of larger elements; ``periodic``: the mesh is one period of a
+    periodic cell (:mod:`fem_reference.periodic`)."""
     from skfem import Basis, ElementQuad2, ElementVector
 
     if kind not in ("plane", "axi"):
@@ -173,6 +178,14 @@ def quadrature_operators(mesh, kind="plane", hanging=None):
         from .quadtree import constraint_matrix
 
         constraint, constrained = constraint_matrix(ib, hanging)
+    if periodic:
+        from .periodic import periodic_constraint
+
+        wrap, right = periodic_constraint(ib)
+        # the hanging DOFs first (some hang on a right-side corner), then the right side from the left
+        constraint = wrap if constraint is None else (constraint @ wrap).tocsr()
+        constrained = np.union1d(constrained, right)
+    if constraint is not None:
         B = (B @ constraint).tocsr()
     B.eliminate_zeros()
 
@@ -195,7 +208,7 @@ def quadrature_operators(mesh, kind="plane", hanging=None):
     ).tocsr()
 
     weights = ib.dx.ravel() * (2.0 * np.pi * r.ravel() if kind == "axi" else 1.0)
-    return QuadratureOperators(ib, kind, B, N_p, weights, pts.reshape(2, -1), constraint, constrained)
+    return QuadratureOperators(ib, kind, B, N_p, weights, pts.reshape(2, -1), constraint, constrained, bool(periodic))
 
 
 @dataclass(frozen=True)

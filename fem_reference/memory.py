@@ -204,18 +204,22 @@ def _face_weights(e_lo, e_hi, f_lo, f_hi):
     return out
 
 
-def mesh_flow(p, t, points):
+def mesh_flow(p, t, points, periodic=False):
     """:class:`Flow` of the 3x3 Gauss points of axis-aligned rectangles.
 
     ``p`` (2, nv) and ``t`` (4, nel) are the mesh's vertices and elements, ``points`` (2, nel, 9)
     the quadrature points. An element takes its inflow through its ``x = x_max`` face from every
     element whose ``x = x_min`` face overlaps it, projected onto its own face (:func:`_face_weights`):
     one neighbour of the same height on a tensor mesh, or up to two of half or twice its height
-    where the mesh coarsens.
+    where the mesh coarsens. ``periodic``: the elements at the upstream end (``x_max`` of the mesh)
+    take their inflow from those at the downstream end (its ``x_min``), so that every row is a closed
+    streamline of a periodic cell and no segment opens relaxed.
     """
     pv = p[:, t]  # (2, 4, nel)
     lo, hi = pv.min(axis=1), pv.max(axis=1)
     nel = t.shape[1]
+    # the faces where material enters each element: on a periodic cell the right end is the left end
+    face = np.where(hi[0] == hi[0].max(), lo[0].min(), hi[0]) if periodic else hi[0]
     rel = (points - lo[:, :, None]) / (hi - lo)[:, :, None]  # (2, nel, 9) in (0, 1)
     pos = 2 - np.searchsorted([0.3, 0.7], rel[0].ravel()).reshape(rel[0].shape)  # upstream first
     lev = np.searchsorted([0.3, 0.7], rel[1].ravel()).reshape(rel[1].shape)
@@ -223,8 +227,8 @@ def mesh_flow(p, t, points):
     q = np.arange(points.shape[2])
     idx[np.arange(nel)[:, None], lev, pos] = np.arange(nel)[:, None] * points.shape[2] + q[None, :]
     pairs_e, pairs_f = [], []
-    for xv in np.intersect1d(hi[0], lo[0]):
-        es = np.flatnonzero(hi[0] == xv)
+    for xv in np.intersect1d(face, lo[0]):
+        es = np.flatnonzero(face == xv)
         fs = np.flatnonzero(lo[0] == xv)
         es = es[np.argsort(lo[1, es])]
         fs = fs[np.argsort(lo[1, fs])]

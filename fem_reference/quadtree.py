@@ -27,17 +27,34 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["QuadtreeMesh", "quadtree_half_space", "constraint_matrix"]
+__all__ = ["QuadtreeMesh", "quadtree_half_space", "quadtree_strip", "constraint_matrix"]
 
 # deepest level: the integer coordinates at that level must be exact in double precision
 MAX_LEVEL = 50
 
 
-def _requested(level, i, j, length, segments, ratio):
+@dataclass(frozen=True)
+class _Roots:
+    """The squares a quadtree starts from: ``nx`` by ``ny`` of side ``side`` (m), the lower left corner
+    at ``(ix0, jy0)`` root sides from the origin (integers, so that every vertex is an exact integer
+    multiple of the finest side and ``x = y = 0`` is exact)."""
+
+    side: float
+    nx: int
+    ny: int
+    ix0: int
+    jy0: int
+    periodic: bool = False
+
+    def inside(self, level, i, j):
+        return 0 <= i < self.nx << level and 0 <= j < self.ny << level
+
+
+def _requested(roots, level, i, j, segments, ratio):
     """The size requested at the point of each square nearest to the segments (m)."""
-    side = length / 2.0**level
-    x0 = -length + i * side
-    y1 = -length + (j + 1) * side
+    side = roots.side / 2.0**level
+    x0 = (roots.ix0 * 2.0**level + i) * side
+    y1 = (roots.jy0 * 2.0**level + j + 1) * side
     h = np.full(level.shape, np.inf)
     for lo, hi, size in segments:
         dx = np.maximum(0.0, np.maximum(lo - (x0 + side), x0 - hi))
@@ -46,15 +63,14 @@ def _requested(level, i, j, length, segments, ratio):
     return h
 
 
-def _refine(length, segments, ratio):
+def _refine(roots, segments, ratio):
     """Leaves ``{level: {(i, j), ...}}`` split until each is no larger than the size requested in it."""
     level = 0
-    i = np.array([0, 1], dtype=np.int64)
-    j = np.zeros(2, dtype=np.int64)
+    i, j = (a.ravel().astype(np.int64) for a in np.meshgrid(np.arange(roots.nx), np.arange(roots.ny), indexing="ij"))
     tree = {}
     while i.size:
-        side = length / 2.0**level
-        split = side > _requested(np.full(i.shape, level), i, j, length, segments, ratio) * (1 + 1e-12)
+        side = roots.side / 2.0**level
+        split = side > _requested(roots, np.full(i.shape, level), i, j, segments, ratio) * (1 + 1e-12)
         if np.any(split) and level >= MAX_LEVEL:
             raise ValueError(f"the mesh would need squares below L / 2^{MAX_LEVEL}: sizes too small for the block")
         tree[level] = set(zip(map(int, i[~split]), map(int, j[~split])))
@@ -76,7 +92,15 @@ def _covering(tree, level, i, j):
 _FACES = ((1, 0), (-1, 0), (0, 1), (0, -1))
 
 
-def _balance(tree):
+def _split(tree, level, i, j):
+    """Replace leaf ``(level, i, j)`` by its four children (in place)."""
+    tree[level].discard((i, j))
+    tree.setdefault(level + 1, set()).update(
+        {(2 * i, 2 * j), (2 * i + 1, 2 * j), (2 * i, 2 * j + 1), (2 * i + 1, 2 * j + 1)}
+    )
+
+
+def _balance(roots, tree):
     """Split leaves until neighbours across every face differ by at most one level (in place)."""
     for lv in sorted(tree, reverse=True):
         if lv < 2:
@@ -84,20 +108,43 @@ def _balance(tree):
         for i, j in list(tree.get(lv, ())):
             for di, dj in _FACES:
                 ni, nj = i + di, j + dj
-                if not (0 <= ni < 2 << lv and 0 <= nj < 1 << lv):
+                if not roots.inside(lv, ni, nj):
                     continue
                 while True:
                     m = _covering(tree, lv - 1, ni >> 1, nj >> 1)
                     if m is None or m >= lv - 1:
                         break
                     # split the coarse leaf covering the neighbour, one level at a time
-                    ci, cj = (ni >> (lv - m)), (nj >> (lv - m))
-                    tree[m].discard((ci, cj))
-                    kids = tree.setdefault(m + 1, set())
-                    kids.update(
-                        {(2 * ci, 2 * cj), (2 * ci + 1, 2 * cj), (2 * ci, 2 * cj + 1), (2 * ci + 1, 2 * cj + 1)}
-                    )
+                    _split(tree, m, ni >> (lv - m), nj >> (lv - m))
     return tree
+
+
+def _match_sides(roots, tree):
+    """Split the squares along the left or the right side where the other side is cut finer at the same
+    height (in place); whether any was split."""
+    changed = False
+    for lv in sorted(tree):
+        last = (roots.nx << lv) - 1
+        for i, j in list(tree.get(lv, ())):
+            if i not in (0, last) or (i, j) not in tree[lv]:
+                continue
+            other = last if i == 0 else 0
+            m = _covering(tree, lv, other, j)
+            if m is None:  # finer on the other side: split this one
+                _split(tree, lv, i, j)
+                changed = True
+            elif m < lv:  # coarser on the other side: split that one
+                _split(tree, m, other >> (lv - m), j >> (lv - m))
+                changed = True
+    return changed
+
+
+def _periodic_balance(roots, tree):
+    """Balance, and cut the two sides alike so that a periodic cell's sides carry the same vertices."""
+    while True:
+        _balance(roots, tree)
+        if not _match_sides(roots, tree):
+            return tree
 
 
 @dataclass(frozen=True)
@@ -113,9 +160,9 @@ class QuadtreeMesh:
     element_size : float
         The smallest side.
     width : tuple of float
-        ``(-L, L)``.
+        ``(x_min, x_max)``: ``(-L, L)`` for the half-space block, ``(0, period)`` for a strip.
     depth : float
-        ``L``.
+        Depth of the block (the bottom is at ``y = -depth``).
     """
 
     mesh: object
@@ -134,20 +181,21 @@ class QuadtreeMesh:
         return self.element_size
 
 
-def quadtree_half_space(segments, *, length, ratio=1.5):
-    """Build the mesh for ``segments`` ``[(x_lo, x_hi, size), ...]`` on the surface (m).
+def _segments(segments):
+    segments = [(float(lo), float(hi), float(s)) for lo, hi, s in segments]
+    if not segments or any(s <= 0 or hi < lo for lo, hi, s in segments):
+        raise ValueError("need segments (x_lo, x_hi, size) with x_lo <= x_hi and size > 0")
+    return segments
 
-    ``ratio`` > 1 bounds the growth of the requested size, ``(ratio - 1)`` per unit distance;
-    the squares' sides themselves double across the faces where they change.
-    """
+
+def _build(roots, segments, ratio):
+    """The :class:`QuadtreeMesh` of ``roots`` refined for ``segments`` and balanced."""
     from skfem import MeshQuad
 
     if not ratio > 1.0:
         raise ValueError(f"ratio must be > 1, got {ratio!r}")
-    segments = [(float(lo), float(hi), float(s)) for lo, hi, s in segments]
-    if not segments or any(s <= 0 or hi < lo for lo, hi, s in segments):
-        raise ValueError("need segments (x_lo, x_hi, size) with x_lo <= x_hi and size > 0")
-    tree = _balance(_refine(float(length), segments, ratio))
+    tree = _refine(roots, _segments(segments), ratio)
+    tree = _periodic_balance(roots, tree) if roots.periodic else _balance(roots, tree)
     top = max(lv for lv, cells in tree.items() if cells)
     lv = np.concatenate([np.full(len(c), v, dtype=np.int64) for v, c in tree.items() if c])
     ij = np.concatenate([np.array(sorted(c), dtype=np.int64).reshape(-1, 2) for v, c in tree.items() if c])
@@ -158,9 +206,9 @@ def quadtree_half_space(segments, *, length, ratio=1.5):
     )  # (4, nel, 2) integer (X, Y) at the finest level
     keys, t = np.unique(corners.reshape(-1, 2), axis=0, return_inverse=True)
     t = t.reshape(4, -1)
-    unit = float(length) / 2.0**top
-    half = np.int64(1) << top
-    p = np.stack([(keys[:, 0] - half) * unit, (keys[:, 1] - half) * unit])
+    unit = roots.side / 2.0**top
+    x_off, y_off = np.int64(roots.ix0) << top, np.int64(roots.jy0) << top
+    p = np.stack([(keys[:, 0] + x_off) * unit, (keys[:, 1] + y_off) * unit])
     # hanging vertices: the middle of each face whose neighbour of the same size is split
     index = {(int(x), int(y)): k for k, (x, y) in enumerate(keys)}
     hanging = []
@@ -169,7 +217,7 @@ def quadtree_half_space(segments, *, length, ratio=1.5):
         for i, j in cells:
             for di, dj in _FACES:
                 ni, nj = i + di, j + dj
-                if not (0 <= ni < 2 << v and 0 <= nj < 1 << v) or _covering(tree, v, ni, nj) is not None:
+                if not roots.inside(v, ni, nj) or _covering(tree, v, ni, nj) is not None:
                     continue
                 if di:
                     x = (i + (di > 0)) * s
@@ -179,7 +227,8 @@ def quadtree_half_space(segments, *, length, ratio=1.5):
                     a, b, m = (i * s, y), ((i + 1) * s, y), (i * s + s // 2, y)
                 hanging.append((index[m], index[a], index[b]))
     mesh = MeshQuad(p, t)
-    L = float(length)
+    x_lo, x_hi = roots.ix0 * roots.side, (roots.ix0 + roots.nx) * roots.side
+    y_lo = roots.jy0 * roots.side
     tol = 1e-9 * unit
 
     def near(a, b):
@@ -187,14 +236,38 @@ def quadtree_half_space(segments, *, length, ratio=1.5):
 
     mesh = mesh.with_boundaries(
         {
-            "left": lambda q: near(q[0], -L),
-            "right": lambda q: near(q[0], L),
-            "bottom": lambda q: near(q[1], -L),
+            "left": lambda q: near(q[0], x_lo),
+            "right": lambda q: near(q[0], x_hi),
+            "bottom": lambda q: near(q[1], y_lo),
             "top": lambda q: near(q[1], 0.0),
         }
     )
     hanging = np.array(sorted(set(hanging)), dtype=np.int64).reshape(-1, 3)
-    return QuadtreeMesh(mesh, hanging, float(unit), (-L, L), L)
+    return QuadtreeMesh(mesh, hanging, float(unit), (float(x_lo), float(x_hi)), float(-y_lo))
+
+
+def quadtree_half_space(segments, *, length, ratio=1.5):
+    """Build the mesh of the block ``[-L, L] x [-L, 0]`` for ``segments`` ``[(x_lo, x_hi, size), ...]``
+    on the surface (m).
+
+    ``ratio`` > 1 bounds the growth of the requested size, ``(ratio - 1)`` per unit distance;
+    the squares' sides themselves double across the faces where they change.
+    """
+    return _build(_Roots(float(length), 2, 1, -1, -1), segments, ratio)
+
+
+def quadtree_strip(period, segments, *, depth, ratio=1.5):
+    """One period ``[0, period] x [-depth * period, 0]`` of a periodic strip, refined for ``segments``
+    ``[(x_lo, x_hi, size), ...]`` on its surface (taken periodically: a segment beyond either end acts
+    at its image within the period) and cut alike along its left and right sides, which therefore carry
+    the same vertices; ``depth`` is a whole number of periods.
+    """
+    depth = int(depth)
+    if depth < 1:
+        raise ValueError(f"depth must be a whole number of periods >= 1, got {depth!r}")
+    period = float(period)
+    images = [(lo + k * period, hi + k * period, s) for lo, hi, s in _segments(segments) for k in (-1, 0, 1)]
+    return _build(_Roots(period, 1, depth, 0, -depth, periodic=True), images, ratio)
 
 
 def constraint_matrix(basis, hanging):

@@ -64,25 +64,6 @@ class _BandEdge(Exception):
     """The contact reached an end of the candidate band."""
 
 
-# Entries of the work arrays of one flexibility call (unknowns times candidate nodes solved
-# together): each candidate costs arrays of the system's size, so they are solved in blocks,
-# and only the displacements are kept.
-FLEXIBILITY_ENTRIES = 5e7
-
-
-def _flexibility(op, top_dofs, ydofs):
-    """Depression of every top node (rows) per unit downward force on each candidate (columns)."""
-    w = np.empty((top_dofs.size, ydofs.size))
-    chunk = max(1, int(FLEXIBILITY_ENTRIES // op.n_unknowns))
-    for lo in range(0, ydofs.size, chunk):
-        cols = np.arange(lo, min(lo + chunk, ydofs.size))
-        F = np.zeros((op.ops.basis.N, cols.size))
-        F[ydofs[cols], np.arange(cols.size)] = -1.0  # unit downward force on the body
-        u, _, _ = op.solve(F, strains=False)
-        w[:, cols] = -u[top_dofs]
-    return w
-
-
 def _solve_mesh(hs, material, R, P, V, band, *, solver, maxiter, condense, active_width, squares=False):
     """Factor (along the system's solver path), condense onto the candidate nodes, solve the
     contact and the fields."""
@@ -118,7 +99,7 @@ def _contact_and_fields(op, ops, top, cand, R, P, band, active_width, maxiter, c
     missed before the contact is solved with them."""
     t1 = time.perf_counter()
     ydofs = top.ydofs[cand]
-    w_top = _flexibility(op, top.ydofs, ydofs)
+    w_top = op.flexibility(top.ydofs, ydofs)
     checkpoint()
     t2 = time.perf_counter()
 

@@ -51,6 +51,10 @@ from .memory import condensed_memory, memory_operators, memory_reach, state_oper
 __all__ = ["SteadyOperator", "steady_operator", "condensable", "condensed_terms", "system_path", "viscous_strain"]
 
 
+# Entries of the work arrays of one flexibility block (unknowns times columns solved together)
+FLEXIBILITY_ENTRIES = 5e7
+
+
 @dataclass
 class SteadyOperator:
     """The factorised steady operator for one material and speed (state: the LU factors).
@@ -124,6 +128,20 @@ class SteadyOperator:
             alpha.append(a.reshape(eps.shape))
         return u, p, alpha
 
+    def flexibility(self, rows, cols):
+        """Depression (m, into the solid) of the displacement DOFs ``rows`` per unit downward force
+        (N/m) on each of the vertical DOFs ``cols``: ``(rows.size, cols.size)``."""
+        w = np.empty((rows.size, cols.size))
+        # each column solved costs arrays of the system's size: solve them in blocks, keep the rows
+        chunk = max(1, int(FLEXIBILITY_ENTRIES // self.n_unknowns))
+        for lo in range(0, cols.size, chunk):
+            block = np.arange(lo, min(lo + chunk, cols.size))
+            F = np.zeros((self.ops.basis.N, block.size))
+            F[cols[block], np.arange(block.size)] = -1.0  # unit downward force on the body
+            u, _, _ = self.solve(F, strains=False)
+            w[:, block] = -u[rows]
+        return w
+
 
 def viscous_strain(ops, ell, eps):
     """``alpha`` (Voigt, point-major) of one term from the strain ``eps`` (exact update)."""
@@ -135,8 +153,13 @@ def viscous_strain(ops, ell, eps):
     return out.reshape(eps.shape)
 
 
-def _fixed_dofs(basis):
+def _fixed_dofs(ops):
+    """The bottom, and the sides on rollers unless the cell is periodic (its right side is then
+    constrained to its left side instead: :mod:`fem_reference.periodic`)."""
+    basis = ops.basis
     bottom = basis.get_dofs("bottom").all()
+    if ops.periodic:
+        return np.unique(bottom)
     sides = basis.get_dofs({"left", "right"}).all("u^1")
     return np.unique(np.concatenate([bottom, sides]))
 
@@ -176,11 +199,13 @@ def condensed_terms(ops, material, speed, condense):
     return cmask & (speed * material.relaxation_times > 0)
 
 
-def system_path(material, speed, cmask, solver="auto", squares=False):
+def system_path(material, speed, cmask, solver="auto", squares=False, closed=False):
     """The :func:`~fem_reference.linsolve.solver_path` of the steady system whose condensed terms
-    are ``cmask``, on a mesh of squares or not."""
+    are ``cmask``, on a mesh of squares or not, on a periodic cell (``closed`` streamlines) or not."""
     moving = speed * material.relaxation_times > 0
-    return solver_path(solver, carries=bool(np.any(moving & ~cmask)), condenses=bool(np.any(cmask)), squares=squares)
+    return solver_path(
+        solver, carries=bool(np.any(moving & ~cmask)), condenses=bool(np.any(cmask)), squares=squares, closed=closed
+    )
 
 
 def steady_operator(ops, material, speed, *, solver="auto", condense=False, memory=None):
@@ -210,7 +235,7 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False, memo
     g = material.moduli / material.E_inf
     cmask = condensed_terms(ops, material, speed, condense)
 
-    free = np.setdiff1d(np.arange(B.shape[1]), np.concatenate([_fixed_dofs(ops.basis), ops.constrained]))
+    free = np.setdiff1d(np.arange(B.shape[1]), np.concatenate([_fixed_dofs(ops), ops.constrained]))
     Bf = B[:, free]
     ncomp = ops.ncomp
     eye = sp.identity(ncomp, format="csr")
@@ -238,7 +263,7 @@ def steady_operator(ops, material, speed, *, solver="auto", condense=False, memo
         blocks.append(row)
     A = sp.bmat(blocks, format="csc")
     t1 = time.perf_counter()
-    fac = factorize(A, system_path(material, speed, cmask, solver)[0].solver, memory=memory)
+    fac = factorize(A, system_path(material, speed, cmask, solver, closed=ops.periodic)[0].solver, memory=memory)
     t2 = time.perf_counter()
     return SteadyOperator(
         ops,

@@ -19,6 +19,11 @@ Interface, point data at the top nodes ``x`` (m): ``pressure`` (Pa), ``gap`` (m,
 cylinder's profile ``h = -x^2/2R`` and the approach), ``contact`` (1 in contact), ``depression``
 (m, into the solid) and ``displacement`` (m, 3 components, from the field).
 
+A periodic profile (:func:`fem_reference.sliding_profile`) is written the same way: the volume is one
+period of the strip, the interface its surface with the profile's ``heights`` (m) and ``slopes`` beside
+the gap, and its field data has ``period`` (m) where the rolling file has ``radius``,
+``dimensionless_speed = V max(lambda_k) / L`` and ``contact_fraction``.
+
 Field data on both (arrays of one value unless stated): ``speed`` (m/s), ``load`` (N/m),
 ``radius`` (m), ``E0``, ``E_inf`` (Pa), ``nu``, ``prony_moduli`` (Pa) and ``relaxation_times``
 (s, one entry per term), ``creep_times`` (s) of the material the solver used (inactive Prony terms
@@ -66,13 +71,18 @@ CONVENTIONS = (
     "SI units; strains are tensor components, not engineering shear; pressure and hydrostatic_pressure "
     "positive in compression; depression positive into the solid; the cylinder moves in +x"
 )
+PROFILE_CONVENTIONS = (
+    "SI units; strains are tensor components, not engineering shear; pressure and hydrostatic_pressure "
+    "positive in compression; depression positive into the solid; heights positive toward the solid; "
+    "the profile moves in +x; one period of a periodic strip, load per period and unit length"
+)
 # The unit of every array the FEM writes, by name (a prefix ``input_`` keeps its unit); the load is
 # a force per unit length in z for plane-strain rolling and a force for axisymmetric indentation.
 UNITS = {
     **dict.fromkeys(("stress", "stress_nodal", "von_mises", "von_mises_nodal", "pressure"), "Pa"),
     **dict.fromkeys(("hydrostatic_pressure", "hydrostatic_pressure_nodal", "E0", "E_inf", "prony_moduli"), "Pa"),
-    **dict.fromkeys(("displacement", "gap", "depression", "radius", "approach"), "m"),
-    **dict.fromkeys(("strain", "contact", "nu", "dimensionless_speed"), "1"),
+    **dict.fromkeys(("displacement", "gap", "depression", "radius", "approach", "heights", "period"), "m"),
+    **dict.fromkeys(("strain", "contact", "nu", "dimensionless_speed", "contact_fraction", "slopes"), "1"),
     **dict.fromkeys(("friction", "friction_dissipation", "friction_moment"), "1"),
     **dict.fromkeys(("relaxation_times", "creep_times", "time"), "s"),
     "dissipation": "W/m^3",
@@ -191,7 +201,12 @@ def interface_points(result):
     poly.lines = np.hstack([[x.size], np.arange(x.size)])
     w = np.asarray(result.displacement, float)
     poly.point_data["pressure"] = np.asarray(result.pressure, float)
-    poly.point_data["gap"] = w + x**2 / (2 * result.radius) - result.approach
+    # heights positive toward the solid: the cylinder's -x^2 / 2R, or a periodic profile's own
+    heights = result.heights if _is_profile(result) else -(x**2) / (2 * result.radius)
+    poly.point_data["gap"] = w - heights - result.approach
+    if _is_profile(result):
+        poly.point_data["heights"] = np.asarray(heights, float)
+        poly.point_data["slopes"] = np.asarray(result.slopes, float)
     poly.point_data["contact"] = (np.asarray(result.pressure) > 0).astype(np.uint8)
     poly.point_data["depression"] = w
     disp = np.zeros((x.size, 3))
@@ -206,8 +221,44 @@ def interface_points(result):
     return poly
 
 
+def _is_profile(result):
+    return hasattr(result, "heights") and hasattr(result, "spots")
+
+
+def _profile_metadata(result):
+    """Field data of a :class:`~fem_reference.ProfileResult`: as the rolling result's, with the period
+    (m) for the radius, ``dimensionless_speed = V max(lambda_k) / L`` and the contact fraction."""
+    m = result.material
+    given = getattr(result, "input_material", None) or m
+    lam = float(np.max(m.creep_times)) if m.creep_times.size else 0.0
+    diss = result.friction_dissipation if result.speed > 0 else result.friction
+    settings = ("elements", "passes", "n_elements", "n_unknowns", "solver", "iterations", "residual", "linear_residual")
+    return dict(
+        speed=[result.speed],
+        load=[result.load],
+        period=[result.length],
+        **_material_data(m),
+        **_material_data(given, "input_"),
+        dimensionless_speed=[result.speed * lam / result.length],
+        friction=[diss],
+        friction_dissipation=[diss],
+        friction_moment=[result.friction],
+        contact_fraction=[result.contact_fraction],
+        approach=[result.approach],
+        conventions=[PROFILE_CONVENTIONS],
+        **provenance(
+            "fem_reference.sliding_profile (scikit-fem: plane strain, one period of a periodic strip, steady "
+            "Eulerian Prony terms on closed streamlines, Q2 displacement / discontinuous P1 pressure)",
+            {k: getattr(result, k) for k in settings},
+        ),
+    )
+
+
 def metadata(result):
-    """Field data of a :class:`~fem_reference.RollingResult` (see module docstring)."""
+    """Field data of a :class:`~fem_reference.RollingResult` or :class:`~fem_reference.ProfileResult`
+    (see module docstring)."""
+    if _is_profile(result):
+        return _profile_metadata(result)
     m = result.material
     given = getattr(result, "input_material", None) or m
     a0 = hertz_half_width(m.E0, m.nu, result.radius, result.load)
