@@ -52,7 +52,7 @@ from .linsolve import solve_on_path
 from .quadtree import quadtree_strip
 from .rolling import FORM_GAP, TWIN_COARSEN
 from .rolling_inputs import QUADTREE_GRADING
-from .steady import steady_operator, stress_and_dissipation, system_path
+from .steady import solution_fields, steady_operator, stress_and_dissipation, system_path
 from .surface import contact_edges, top_surface
 
 __all__ = ["ProfileResult", "sliding_profile", "profile_nodes", "spot_edges"]
@@ -533,24 +533,7 @@ def _result(out, estimate, material, given, terms, h, L, P, V, N, vtk, keep_fiel
     if "unsettled" in out:
         warnings += (out["unsettled"],)
     keep = keep_fields or vtk is not None
-    fields = (
-        dict(
-            mesh=out["strip"].mesh,
-            basis=ops.basis,
-            ops=ops,
-            u=out["u"],
-            points=ops.points,
-            weights=ops.weights,
-            strain=out["eps"],
-            stress=out["sigma"],
-            alpha=out["alpha"],
-            pressure=out["p"],
-            taus=np.array(material.relaxation_times),
-            dissipation=out["diss"],
-        )
-        if keep
-        else {}
-    )
+    fields = solution_fields(out["strip"].mesh, ops, out, material) if keep else {}
     timings = dict(out["timings"], total=time.perf_counter() - t_start)
     res = ProfileResult(
         x=out["x"],

@@ -31,7 +31,7 @@ from .linsolve import available_memory, solve_on_path
 from .mesh import half_space_mesh
 from .rolling_inputs import check_inputs, check_uniform_fits, domain_size, hertz_half_width
 from .rolling_result import RollingResult
-from .steady import condensed_terms, steady_operator, stress_and_dissipation, system_path
+from .steady import condensed_terms, solution_fields, steady_operator, stress_and_dissipation, system_path
 from .surface import contact_edges, top_surface
 
 __all__ = ["RollingResult", "rolling_cylinder", "domain_size"]
@@ -509,24 +509,7 @@ def _result(material, terms, hs, out, npass, R, P, V, ratio, mesh, keep_fields, 
     if "estimate_failed" in out:
         warnings += (out["estimate_failed"],)
     keep = keep_fields or vtk is not None
-    fields = (
-        dict(
-            mesh=hs.mesh,
-            basis=ops.basis,
-            ops=ops,
-            u=out["u"],
-            points=ops.points,
-            weights=ops.weights,
-            strain=out["eps"],
-            stress=out["sigma"],
-            alpha=out["alpha"],
-            pressure=out["p"],
-            taus=np.array(material.relaxation_times),
-            dissipation=out["diss"],
-        )
-        if keep
-        else {}
-    )
+    fields = solution_fields(hs.mesh, ops, out, material) if keep else {}
     res = RollingResult(
         x=xc,
         pressure=pres,

@@ -48,7 +48,16 @@ from .kinematics import deviatoric_matrix, inverse_bulk_modulus, mixed_blocks, t
 from .linsolve import RESIDUAL_LIMIT, factorize, solve_refined, solver_path
 from .memory import condensed_memory, memory_operators, memory_reach, state_operators
 
-__all__ = ["SteadyOperator", "steady_operator", "condensable", "condensed_terms", "system_path", "viscous_strain"]
+__all__ = [
+    "SteadyOperator",
+    "steady_operator",
+    "condensable",
+    "condensed_terms",
+    "system_path",
+    "viscous_strain",
+    "stress_and_dissipation",
+    "solution_fields",
+]
 
 
 # Entries of the work arrays of one flexibility block (unknowns times columns solved together)
@@ -302,3 +311,24 @@ def stress_and_dissipation(ops, material, u, p, alpha):
         diss += (Ek / tau) * np.einsum("gi,ij,gj->g", e, d_full, e)
     sigma = s_eff @ ddev.T - p[:, None] * m[None, :]
     return eps, sigma, diss
+
+
+def solution_fields(mesh, ops, out, material):
+    """The fields a result keeps and :func:`fem_reference.vtk.write_fields` writes, from a solve's
+    ``out`` (``u``, ``p``, ``alpha``, ``eps``, ``sigma``, ``diss``): the mesh, its basis and operators,
+    the displacement and, at the quadrature points, strain, stress, viscous strains, pressure and
+    dissipation."""
+    return dict(
+        mesh=mesh,
+        basis=ops.basis,
+        ops=ops,
+        u=out["u"],
+        points=ops.points,
+        weights=ops.weights,
+        strain=out["eps"],
+        stress=out["sigma"],
+        alpha=out["alpha"],
+        pressure=out["p"],
+        taus=np.array(material.relaxation_times),
+        dissipation=out["diss"],
+    )
