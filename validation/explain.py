@@ -30,6 +30,7 @@ METRIC_NAMES = {
     "friction_rel_error": "friction coefficient, relative error",
     "friction_rel_diff": "friction coefficient, relative difference",
     "friction_eq6_rel_error": "friction by eq. 6 (moment of p dh/dx), relative error",
+    "friction_eq6_rel_diff": "friction by eq. 6 (moment of p dh/dx), relative difference",
     "friction_moment_rel_error": "friction from the moment of the contact forces, relative error",
     "friction_moment_rel_diff": "friction from the moment of the contact forces, relative difference",
     "friction_forms_rel_diff": "friction: dissipation form against eq. 6, relative difference",
@@ -45,6 +46,9 @@ METRIC_NAMES = {
     "contact_radius_error_elements": "contact radius, error in elements",
     "half_width_error_cells": "contact half-width, error in cells",
     "contact_set_mismatch_points": "contact set, points that differ",
+    "contact_fraction_rel_diff": "contact fraction, relative difference",
+    "spot_pressure_rel_l2": "pressure on the contact spots' nodes, relative L2 difference",
+    "spot_edge_distance_per_L": "contact spot edges, largest distance from the reference's / period",
     "approach_rel_error": "approach (rigid-body indentation), relative error",
     "contact_force_balance_rel_diff": "contact forces against the load, relative difference",
     "dissipation_balance_rel_diff": "energy balance: field dissipation against mu P V, relative",
@@ -55,7 +59,12 @@ METRIC_NAMES = {
 
 # the metrics a plot of each quantity illustrates, by words of its identifier
 _PRESSURE = ("pressure", "edge", "half_width", "contact_radius", "contact_set")
-_SWEEPS = {"friction": ("friction", "asymptote"), "contact radius": ("contact_radius",), "approach": ("approach",)}
+_SWEEPS = {
+    "friction": ("friction", "asymptote"),
+    "contact radius": ("contact_radius",),
+    "contact fraction": ("contact_fraction",),
+    "approach": ("approach",),
+}
 _MARGIN = re.compile(r"\b(?:margin|bound) (?:>= ?)?(\d+(?:\.\d+)?)x")
 
 

@@ -8,9 +8,10 @@ settings.
 from .base import Case, CaseOutput, Check, Profile, Run, Sweep
 from .cylinder import CASES as _CYLINDER
 from .periodic import CASES as _PERIODIC
+from .rough_profile import CASES as _ROUGH_PROFILE
 from .rubber import CASES as _RUBBER
 from .sphere import CASES as _SPHERE
 
-CASES = {case.name: case for case in (*_CYLINDER, *_RUBBER, *_SPHERE, *_PERIODIC)}
+CASES = {case.name: case for case in (*_CYLINDER, *_RUBBER, *_SPHERE, *_PERIODIC, *_ROUGH_PROFILE)}
 
 __all__ = ["CASES", "Case", "CaseOutput", "Check", "Profile", "Run", "Sweep"]
