@@ -14,6 +14,7 @@ import contextlib
 import logging
 import os
 import threading
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -499,6 +500,21 @@ def solve_on_path(path, build, work):
     raise ConvergenceError(f"{missed}, and no fallback could run")  # every later step was skipped
 
 
+_MAGNITUDES = {}
+
+
+def _magnitude(A):
+    """``|A|`` (entrywise), kept while ``A`` lives: every residual of a system's solves and
+    refinement steps scales by it, and forming it costs a pass over the matrix."""
+    key = id(A)
+    hit = _MAGNITUDES.get(key)
+    if hit is None or hit[0]() is not A:
+        hit = (weakref.ref(A), abs(A))
+        _MAGNITUDES[key] = hit
+        weakref.finalize(A, _MAGNITUDES.pop, key, None)
+    return hit[1]
+
+
 def relative_residual(A, x, b, n_equilibrium=None):
     """Relative residual of ``A x = b``, the worst over the columns of ``b``.
 
@@ -519,7 +535,7 @@ def relative_residual(A, x, b, n_equilibrium=None):
     if n_equilibrium is None:
         return _worst_ratio(norm(r, axis=0), norm(b2, axis=0))
     n = int(n_equilibrium)
-    scale = abs(A) @ np.abs(x.reshape(x.shape[0], -1)) + np.abs(b2)
+    scale = _magnitude(A) @ np.abs(x.reshape(x.shape[0], -1)) + np.abs(b2)
     load = norm(b2[:n], axis=0)
     worst = _worst_ratio(norm(r[:n], axis=0), np.where(load > 0, load, norm(scale[:n], axis=0)))
     if n < A.shape[0]:
@@ -540,7 +556,7 @@ def residual_limit(A, x, b, n_equilibrium):
     """
     n = int(n_equilibrium)
     b2 = b.reshape(b.shape[0], -1)[:n]
-    terms = abs(A[:n]) @ np.abs(x.reshape(x.shape[0], -1))
+    terms = (_magnitude(A) @ np.abs(x.reshape(x.shape[0], -1)))[:n]
     load = np.linalg.norm(b2, axis=0)
     ok = load > 0
     if not np.any(ok):

@@ -21,7 +21,7 @@ import numpy as np
 
 from .cases import CASES
 
-__all__ = ["run_cases", "environment", "select"]
+__all__ = ["run_cases", "run_case", "environment", "select"]
 log = logging.getLogger(__name__)
 
 
@@ -119,42 +119,95 @@ def _case_record(case, out, seconds):
     )
 
 
-def run_cases(names, *, quick, out_dir, vtk=True, progress=True):
-    """Run the named cases (all if empty); return the record (see module docstring)."""
+def run_case(name, *, quick, out_dir, vtk=True):
+    """Run one case; its record (a crashing case is a record of status ``error``: the others still run)."""
+    out_dir = Path(out_dir)
+    case = CASES[name]
+    t0 = time.perf_counter()
+    try:
+        out = case(quick=quick, vtk_dir=(out_dir / "vtk" / name) if vtk else None, root=out_dir)
+    except Exception as err:
+        log.error("case %s raised %s", name, err)
+        return dict(
+            title=case.title,
+            description=case.description,
+            solvers=list(case.solvers),
+            reference=case.reference,
+            status="error",
+            seconds=time.perf_counter() - t0,
+            error=f"{type(err).__name__}: {err}",
+            traceback=traceback.format_exc(),
+            checks=[],
+            runs=[],
+            files=[],
+            notes=[],
+            numbers={},
+            profiles=[],
+            sweeps=[],
+        )
+    return _case_record(case, out, time.perf_counter() - t0)
+
+
+# one thread per library in each process of a parallel run: the processes already keep the cores
+# busy, and threaded factorisations beside them would only compete for the same cores
+ONE_THREAD = ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "OPENBLAS_NUM_THREADS")
+
+
+def in_processes(fn, names, jobs, bar, **kw):
+    """``{name: fn(name, **kw)}`` for the case ``names``, computed in ``jobs`` processes, the costliest
+    case (:attr:`Case.seconds`) started first; ``bar`` (tqdm) counts them. The processes are started
+    fresh (``spawn``: ``fn`` is a module-level function), with one thread each."""
+    import concurrent.futures
+    import multiprocessing
+    import os
+
+    saved = {k: os.environ.get(k) for k in ONE_THREAD}
+    os.environ.update(dict.fromkeys(ONE_THREAD, "1"))  # read by the numerical libraries as they load
+    records = {}
+    try:
+        with concurrent.futures.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn")) as pool:
+            order = sorted(names, key=lambda n: -CASES[n].seconds)
+            futures = {pool.submit(fn, n, **kw): n for n in order}
+            for done in concurrent.futures.as_completed(futures):
+                records[futures[done]] = done.result()
+                bar.set_postfix_str(futures[done])
+                bar.update()
+    finally:
+        for k, v in saved.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+    return {n: records[n] for n in names}
+
+
+def check_jobs(jobs):
+    from bem.errors import InputError
+
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise InputError(f"jobs must be an integer >= 1; got {jobs!r}")
+
+
+def run_cases(names, *, quick, out_dir, vtk=True, progress=True, jobs=1):
+    """Run the named cases (all if empty), ``jobs`` at a time in separate processes (one: in this
+    one); return the record (see module docstring)."""
     from tqdm.auto import tqdm
 
+    check_jobs(jobs)
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     record = dict(quick=bool(quick), environment=environment(), cases={})
     t_all = time.perf_counter()
-    bar = tqdm(select(names), desc="validation", unit="case", disable=not progress)
-    for name in bar:
-        bar.set_postfix_str(name)
-        case = CASES[name]
-        t0 = time.perf_counter()
-        try:
-            out = case(quick=quick, vtk_dir=(out_dir / "vtk" / name) if vtk else None, root=out_dir)
-        except Exception as err:  # a crashing case is a failed case; the others still run
-            log.error("case %s raised %s", name, err)
-            record["cases"][name] = dict(
-                title=case.title,
-                description=case.description,
-                solvers=list(case.solvers),
-                reference=case.reference,
-                status="error",
-                seconds=time.perf_counter() - t0,
-                error=f"{type(err).__name__}: {err}",
-                traceback=traceback.format_exc(),
-                checks=[],
-                runs=[],
-                files=[],
-                notes=[],
-                numbers={},
-                profiles=[],
-                sweeps=[],
-            )
-            continue
-        record["cases"][name] = _case_record(case, out, time.perf_counter() - t0)
+    names = select(names)
+    kw = dict(quick=quick, out_dir=out_dir, vtk=vtk)
+    if jobs > 1 and len(names) > 1:
+        with tqdm(total=len(names), desc="validation", unit="case", disable=not progress) as bar:
+            record["cases"] = in_processes(run_case, names, min(jobs, len(names)), bar, **kw)
+    else:
+        bar = tqdm(names, desc="validation", unit="case", disable=not progress)
+        for name in bar:
+            bar.set_postfix_str(name)
+            record["cases"][name] = run_case(name, **kw)
     record["seconds"] = time.perf_counter() - t_all
     cases = record["cases"].values()
     record["summary"] = dict(

@@ -83,15 +83,28 @@ def _solvers_under_test(res, tamper):
     return sorted(judged | tamper.changed)
 
 
-def run_sensitivity(names, *, quick, progress=True):
-    """Rerun the named cases (all if empty) under every perturbation; returns ``(entries,
-    base_failures)`` with ``base_failures[case]`` the checks that fail without perturbation
-    (those cannot show a detection and are left out of ``by``)."""
+def run_sensitivity(names, *, quick, progress=True, jobs=1):
+    """Rerun the named cases (all if empty) under every perturbation, ``jobs`` cases at a time in
+    separate processes (:func:`validation.runner.in_processes`); returns ``(entries, base_failures)``
+    with ``base_failures[case]`` the checks that fail without perturbation (those cannot show a
+    detection and are left out of ``by``)."""
     from tqdm.auto import tqdm
 
+    from .runner import check_jobs, in_processes
+
+    check_jobs(jobs)
+    names = select(names)
+    if jobs > 1 and len(names) > 1:
+        with tqdm(total=len(names), desc="sensitivity", unit="case", disable=not progress) as bar:
+            by_case = in_processes(_case_entries, names, min(jobs, len(names)), bar, quick=quick, progress=False)
+    else:
+        by_case = {
+            name: _case_entries(name, quick, progress)
+            for name in tqdm(names, desc="sensitivity", unit="case", disable=not progress)
+        }
     entries, base = [], {}
-    for name in tqdm(select(names), desc="sensitivity", unit="case", disable=not progress):
-        e, failing = _case_entries(name, quick, progress)
+    for name in names:
+        e, failing = by_case[name]
         entries += e
         base[name] = failing
     return entries, base
@@ -109,10 +122,10 @@ def outcome(entry):
     return entry.get("outcome") or ("detected" if entry["detected"] else "missed")
 
 
-def attach(record, names, *, quick, progress=True):
+def attach(record, names, *, quick, progress=True, jobs=1):
     """Run :func:`run_sensitivity` and store it in ``record["sensitivity"]`` (the entries) and
     ``record["sensitivity_base_failures"]``; returns the entries."""
-    entries, base = run_sensitivity(names, quick=quick, progress=progress)
+    entries, base = run_sensitivity(names, quick=quick, progress=progress, jobs=jobs)
     record["sensitivity"] = entries
     record["sensitivity_base_failures"] = base
     return entries

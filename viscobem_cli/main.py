@@ -23,6 +23,7 @@ a baseline.
 """
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -160,12 +161,14 @@ def _cmd_validate(args):
     baseline_path, compare_with = _baseline_plan(args)
     print(f"viscobem validate: {len(names)} case(s), {'quick' if args.quick else 'full'} set; writing to {args.out}")
     vtk = _optional_notes(args, names)
-    record = run_cases(names, quick=args.quick, out_dir=args.out, vtk=vtk, progress=not args.no_progress)
+    record = run_cases(
+        names, quick=args.quick, out_dir=args.out, vtk=vtk, progress=not args.no_progress, jobs=args.jobs
+    )
     summary = record["summary"]
     if args.sensitivity:
         from validation.sensitivity import attach
 
-        attach(record, names, quick=args.quick, progress=not args.no_progress)
+        attach(record, names, quick=args.quick, progress=not args.no_progress, jobs=args.jobs)
     comparison = None
     if compare_with:
         from validation import baselines
@@ -354,6 +357,14 @@ def build_parser():
     val.add_argument("--no-vtk", action="store_true", help="do not write VTK files")
     val.add_argument("--no-progress", action="store_true", help="no progress bar")
     val.add_argument("--no-plots", action="store_true", help="report.html without figures (faster)")
+    val.add_argument(
+        "--jobs",
+        type=int,
+        default=min(2, os.cpu_count() or 1),
+        metavar="N",
+        help="run N cases at a time, each in its own process with one thread (default: 2 where there are "
+        "2 cores or more; 1 runs them one after another in this process)",
+    )
     val.add_argument("--baseline", default=None, help="baseline file (default: validation/baselines/quick.json)")
     val.add_argument("--no-baseline", action="store_true", help="with --quick: do not compare with the baselines")
     val.add_argument(

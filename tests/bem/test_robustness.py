@@ -75,7 +75,7 @@ def test_converges_everywhere_64(material, xi, level):
     _check(_surface(2, 64), MATERIALS[material], xi, level)
 
 
-@pytest.mark.slow
+@pytest.mark.heavy
 def test_crawling_line_attempt_leaves_room_for_the_fallback():
     """The hardest case of the sweep at 128²: E_inf/E0 = 1e4, xi = 1, a few contact spots.
 

@@ -152,7 +152,7 @@ def test_coarsest_grading_has_its_twin():
     assert abs(r.friction / h.friction - 1) <= r.error_estimate["friction"]
 
 
-@pytest.mark.slow
+@pytest.mark.heavy
 def test_rolling_hunter_on_squares_at_ratio_1000():
     # E_inf/E0 = 1000, V lambda = 3 relaxed half-widths: the leading-edge layer V tau is 0.3 % of the
     # relaxed half-width and resolved. Measured moment -0.09 %, dissipation +0.84 % (its estimate

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from conftest import vtk_units
 
+from bem.errors import InputError
 from validation import baselines, metrics
 from validation.cases import CASES, cylinder, periodic
 from viscobem_cli.main import main
@@ -203,6 +204,8 @@ def test_fem_vtu_and_pvd_of_a_rolling_sweep(tmp_path, monkeypatch, capsys):
     main(
         [
             "validate",
+            "--jobs",
+            "1",  # in this process: the test patches the case
             "--quick",
             "--no-progress",
             "--no-baseline",
@@ -311,6 +314,8 @@ def test_sensitivity_table_and_exit_status(tmp_path, monkeypatch, capsys):
     the run."""
     argv = [
         "validate",
+        "--jobs",
+        "1",  # in this process: the test patches the case
         "--quick",
         "--no-progress",
         "--no-vtk",
@@ -360,6 +365,35 @@ def test_perturbations_change_only_what_they_name():
 
 
 # ------------------------------------------------------------------ failures and baselines
+def test_cases_in_two_processes_give_the_numbers_of_one(tmp_path):
+    """--jobs 2 runs the cases in processes of their own: the same records, in registry order, as
+    one after another in this process (to round-off: the processes run one thread each)."""
+    from validation.runner import run_cases
+
+    names = ["elastic_rough_dense", "westergaard"]
+    runs = {
+        jobs: run_cases(names, quick=True, out_dir=tmp_path / str(jobs), vtk=False, progress=False, jobs=jobs)
+        for jobs in (1, 2)
+    }
+    assert list(runs[2]["cases"]) == ["westergaard", "elastic_rough_dense"] == list(runs[1]["cases"])
+    for name, case in runs[1]["cases"].items():
+        other = runs[2]["cases"][name]
+        assert other["status"] == case["status"] == "passed"
+        assert [c["label"] for c in other["checks"]] == [c["label"] for c in case["checks"]]
+        for a, b in zip(case["checks"], other["checks"]):
+            assert b["value"] == pytest.approx(a["value"], rel=1e-9, abs=1e-15)
+
+
+def test_jobs_must_be_a_positive_integer(tmp_path, capsys):
+    from validation.runner import run_cases
+
+    for jobs in (0, -1, 1.5, True):
+        with pytest.raises(InputError, match="jobs must be an integer >= 1"):
+            run_cases(["westergaard"], quick=True, out_dir=tmp_path, jobs=jobs)
+    assert main(["validate", "--jobs", "0", "--case", "westergaard", "--out", str(tmp_path)]) == 2
+    assert "jobs must be an integer >= 1; got 0" in capsys.readouterr().err
+
+
 def test_bad_case_name_is_an_input_error(tmp_path, capsys):
     assert main(["validate", "--case", "nope", "--out", str(tmp_path)]) == 2
     assert "case must be one of" in capsys.readouterr().err
@@ -376,6 +410,8 @@ def test_a_crashing_case_is_reported_and_the_others_still_run(tmp_path, monkeypa
     status = main(
         [
             "validate",
+            "--jobs",
+            "1",  # in this process: the test patches the case
             "--quick",
             "--no-baseline",
             "--no-progress",
@@ -419,6 +455,8 @@ def test_missed_tolerance_and_changed_baseline_exit_non_zero_with_a_summary(tmp_
     status = main(
         [
             "validate",
+            "--jobs",
+            "1",  # in this process: the test patches the case
             "--quick",
             "--no-progress",
             "--no-vtk",

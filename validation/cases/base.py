@@ -138,6 +138,9 @@ class Case:
     solvers: tuple
     reference: str
     run: object
+    # the full set's wall time of this case in seconds, measured on 2 cores: ``--jobs`` starts the
+    # costliest cases first, so that the last one to start is a short one
+    seconds: float = 1.0
 
     def __call__(self, quick=False, vtk_dir: Path | None = None, root: Path | None = None, tamper=None):
         from validation.perturb import Tamper

@@ -460,6 +460,7 @@ CASES = [
         ("exact", *SOLVERS),
         "exact",
         lambda **kw: run_sls(3, **kw),
+        seconds=270,
     ),
     Case(
         "cylinder_sls_r10",
@@ -468,6 +469,7 @@ CASES = [
         ("exact", *SOLVERS),
         "exact",
         lambda **kw: run_sls(10, **kw),
+        seconds=290,
     ),
     Case(
         "cylinder_prony3",
@@ -477,6 +479,7 @@ CASES = [
         tuple(SOLVERS),
         "fem",
         run_prony,
+        seconds=160,
     ),
     Case(
         "cylinder_fem_high_ratio",
@@ -486,5 +489,6 @@ CASES = [
         ("exact", "fem"),
         "exact",
         run_high_ratio,
+        seconds=60,
     ),
 ]

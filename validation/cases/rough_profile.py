@@ -288,5 +288,6 @@ CASES = [
         ("bem-periodic", "fem-profile", "bem-reference"),
         "bem-reference",
         run_rough_profile,
+        seconds=400,
     )
 ]

@@ -259,5 +259,6 @@ CASES = [
         (*UNDER_TEST, *REFERENCE, "fem"),
         "bem-reference",
         run_rubber,
+        seconds=210,
     )
 ]

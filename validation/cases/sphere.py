@@ -322,6 +322,7 @@ CASES = [
         ("exact", *SPHERE_BEM, "fem"),
         "exact",
         run_sphere,
+        seconds=30,
     ),
     Case(
         "creep_indentation",
@@ -331,5 +332,6 @@ CASES = [
         ("exact", "fem"),
         "exact",
         run_creep,
+        seconds=20,
     ),
 ]
