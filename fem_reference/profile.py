@@ -94,6 +94,9 @@ class ProfileResult:
         Nodal contact forces (N/m); they sum to ``load``.
     displacement : ndarray
         Depression (into the solid) at ``x`` (m).
+    gap : ndarray
+        Deformed gap at ``x`` (m): the depression less the profile's reach into the solid (its heights
+        plus the approach); zero on the contact spots and positive between them.
     contact : ndarray of bool
         The nodes in contact.
     spots : (m, 2) ndarray
@@ -142,6 +145,7 @@ class ProfileResult:
     pressure: np.ndarray
     forces: np.ndarray
     displacement: np.ndarray
+    gap: np.ndarray
     contact: np.ndarray
     spots: np.ndarray
     contact_fraction: float
@@ -535,13 +539,15 @@ def _result(out, estimate, material, given, terms, h, L, P, V, N, vtk, keep_fiel
     keep = keep_fields or vtk is not None
     fields = solution_fields(out["strip"].mesh, ops, out, material) if keep else {}
     timings = dict(out["timings"], total=time.perf_counter() - t_start)
+    depression = out["w"](np.flatnonzero(sol.active)) @ sol.lam[sol.active]
     res = ProfileResult(
         x=out["x"],
         heights=out["heights"],
         slopes=out["slopes"],
         pressure=out["pres"],
         forces=sol.lam,
-        displacement=out["w"](np.flatnonzero(sol.active)) @ sol.lam[sol.active],
+        displacement=depression,
+        gap=depression - out["heights"] - float(sol.d),
         contact=sol.active,
         spots=out["spots"],
         contact_fraction=out["fraction"],
