@@ -129,8 +129,8 @@ class ProfileResult:
     warnings : tuple of str
     error_estimate : dict
         Relative error estimates of ``friction`` and ``friction_dissipation`` from the coarse twin
-        (every size and growth twice as large) and the gap between the forms, laid on the form whose
-        own change does not account for it; empty without dissipation.
+        (every size and growth twice as large) and the gap between the forms; empty without
+        dissipation.
     timings : dict
     peak_memory : float
         Peak resident memory of the process (MiB).
@@ -316,8 +316,7 @@ def sliding_profile(
         Solve the same problem on the coarse twin (every square and the growth of the squares
         :data:`~fem_reference.rolling.TWIN_COARSEN` times larger, about the same spots) and estimate
         the error of the friction in both forms (``result.error_estimate``), with a warning where one
-        exceeds its :data:`ESTIMATE_LIMIT`. ``False`` skips the twin; a warning then says where the
-        two forms differ by more than :data:`~fem_reference.rolling.FORM_GAP`.
+        exceeds its :data:`ESTIMATE_LIMIT`.
 
     Returns
     -------
@@ -364,29 +363,17 @@ def _readings(out, P, V):
 
 
 def _estimate(fine_out, coarse, V):
-    """Relative error estimates of the two forms of the friction (docs/fem-profile.md, "Error
-    estimate").
-
-    Each form's own estimate is its change to the twin: an error of order ``p >= 1`` in the element
-    size is at most that. The two forms converge to one value, so their gap is an error too, of one
-    form or of both, and it is laid on each form unless the other form's own change to the twin is
-    at least the gap: then that form, not yet converged by its own measure, accounts for the gap.
-    This tells the two limits apart: at low speed short memories put the dissipation form's error
-    (first order in the element size) in the gap; far above the friction peak the friction is small
-    beside the pressure's moment, the moment form carries the gap and the dissipation form, which
-    its twin finds converged, stays accurate up to the glassy limit.
-
-    (The contact fraction has none: its edges are placed to within a fraction of a node spacing, an
-    error that changes sign from one mesh to the next, so that the change to the twin can be smaller
-    than the error itself.)"""
+    """For either form of the friction, the larger of its change to the twin (an error of order
+    ``p >= 1`` in the element size is at most that) and the gap between the forms, which converge to
+    one value. (The contact fraction has none: its edges are placed to within a fraction of a node
+    spacing, an error that changes sign from one mesh to the next, so that the change to the twin
+    can be smaller than the error itself.)"""
     P = fine_out["load"]
     fine, twin = _readings(fine_out, P, V), _readings(coarse, P, V)
     if not (V > 0 and fine["friction"] != 0):
         return {}
     gap = abs(fine["friction_dissipation"] / fine["friction"] - 1)
-    change = {q: abs(twin[q] / fine[q] - 1) for q in FORMS}
-    other = dict(zip(FORMS, reversed(FORMS)))
-    return {q: max(change[q], gap if change[other[q]] < gap else 0.0) for q in FORMS}
+    return {q: max(abs(twin[q] / fine[q] - 1), gap) for q in FORMS}
 
 
 class _Flexibility:
@@ -534,8 +521,7 @@ def _result(out, estimate, material, given, terms, h, L, P, V, N, vtk, keep_fiel
     if not out["residual"] <= compl_limit:
         problems.append(f"complementarity residual {out['residual']:.2e} > {compl_limit:.1e}")
     warnings = ()
-    # with estimates the gap is in each form's estimate, laid on the form it belongs to (_estimate)
-    if not estimate and V > 0 and material.relaxation_times.size and abs(mu_d - mu) > FORM_GAP * abs(mu):
+    if V > 0 and material.relaxation_times.size and abs(mu_d - mu) > FORM_GAP * abs(mu):
         warnings += (
             f"the moment and dissipation forms of the friction differ by {abs(mu_d / mu - 1):.2%} (more than "
             f"{FORM_GAP:.0%}): the mesh does not resolve what dissipates; more elements bring them together",

@@ -8,7 +8,6 @@ import scipy.sparse.linalg as spla
 import bem
 from bem.errors import ConvergenceError, InputError
 from bem.surfaces import Surface
-from fem_reference import rolling
 from fem_reference.kinematics import quadrature_operators
 from fem_reference.memory import state_operators
 from fem_reference.profile import profile_nodes, sliding_profile, spot_edges
@@ -217,12 +216,12 @@ LOAD_GLASSY = 400.0
 def test_glassy_limit_against_the_bem_and_its_estimates():
     """Far above the friction peak (V tau_k >= 100 periods for every term) the rubber slides as its
     glassy spring: the FEM's default call against the BEM on 4096 points, elastic at E_inf and
-    viscoelastic, 2 spots at 14 % contact. The friction is then small beside the pressure's moment:
-    the moment form is a few per cent off and its estimate (its change to the twin, 2.7) says so,
-    while the dissipation form is within 1e-4 of the BEM's and its estimate (1.7e-5) keeps the gap
-    between the forms off it: no warning for it. Measured: contact fraction -0.47 % of the elastic
-    BEM's, peak pressure -0.23 %, pressure L2 0.68 %, dissipation form -7.6e-5 (at the BEM's own
-    accuracy on 4096 points: the check is its 1e-3 bound, margin 13x, not the estimate)."""
+    viscoelastic (whose dissipation form is converged there to 2e-6: 2e-9 from 8192 to 16384
+    points), 2 spots at 14 % contact. Measured: contact fraction -0.47 % of the elastic BEM's, peak
+    pressure -0.23 %, pressure L2 0.68 %; dissipation form -7.6e-5, moment form -4.2 %. The friction
+    is small beside the pressure's moment, and the moment form's error does not shrink with it. Each
+    estimate covers its error: the moment form's by its change to the twin (2.7), the dissipation
+    form's by the gap between the forms (its change to the twin, 1.7e-5, would not)."""
     h = rough_profile()
     hb, _ = profile_nodes(h, L, np.arange(4096) * L / 4096)
     V = 1e5
@@ -236,12 +235,9 @@ def test_glassy_limit_against_the_bem_and_its_estimates():
     assert abs(r.contact_fraction / e.contact_fraction - 1) < 1e-2
     assert abs(r.peak_pressure / e.pressure.max() - 1) < 1e-2
     assert np.linalg.norm(r.pressure - pe) / np.linalg.norm(pe) < 1e-2
-    assert abs(r.friction_dissipation / b.friction - 1) < 1e-3
-    est = r.error_estimate
-    assert est["friction_dissipation"] <= rolling.ESTIMATE_LIMIT["friction_dissipation"]
-    assert est["friction"] >= abs(r.friction / b.friction_eq6 - 1)
-    # one warning, the moment form's estimate; none that the forms differ (each estimate says which)
-    assert len(r.warnings) == 1 and r.warnings[0].startswith("friction error estimate"), r.warnings
+    err_d, err_m = abs(r.friction_dissipation / b.friction - 1), abs(r.friction / b.friction_eq6 - 1)
+    assert err_d < 1e-3  # margin 13x
+    assert r.error_estimate["friction_dissipation"] >= err_d and r.error_estimate["friction"] >= err_m
 
 
 @pytest.fixture(scope="module")
