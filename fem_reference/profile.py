@@ -45,10 +45,10 @@ from bem.checks import check_array, check_int, check_positive
 from bem.errors import ConvergenceError, InputError
 from bem.materials.material import Material
 
-from .contact import complementarity_limit, complementarity_residual, gap_scale, solve_load_control
+from .contact import complementarity_limit, solve_corrected
 from .graded import fold_terms
 from .kinematics import quadrature_operators
-from .linsolve import solve_on_path
+from .linsolve import STALL, solve_on_path
 from .quadtree import quadtree_strip
 from .rolling import FORM_GAP, TWIN_COARSEN
 from .rolling_inputs import QUADTREE_GRADING
@@ -345,7 +345,9 @@ def sliding_profile(
         try:
             # every size and the growth of the sizes TWIN_COARSEN times larger, about the same spots
             twin = _segments(L, N / TWIN_COARSEN, out["edges"])
-            coarse = _solve(used, h, L, P, V, twin, depth, 1 + TWIN_COARSEN * (ratio - 1), solver, maxiter, False)
+            coarse = _solve(
+                used, h, L, P, V, twin, depth, 1 + TWIN_COARSEN * (ratio - 1), solver, maxiter, False, out["edges"]
+            )
         except ConvergenceError as err:
             out["estimate_failed"] = f"no error estimate: the coarse twin's solve failed ({err})"
         else:
@@ -379,10 +381,13 @@ def _estimate(fine_out, coarse, V):
 class _Flexibility:
     """Columns of the surface nodes' flexibility, solved when the contact first asks for them: only
     nodes that enter the active set need theirs (a few tenths of the surface at most), and each
-    column is a solve with the factor."""
+    column is a solve with the factor. The solves are not refined: the contact is refined as a
+    whole against exact field solves instead (:func:`~fem_reference.contact.solve_corrected`), which
+    halves the solves where the factor's first solve misses the target (SuperLU's on these cells:
+    relative residual ~1e-7)."""
 
-    def __init__(self, op, dofs, checkpoint):
-        self.op, self.dofs, self.checkpoint = op, dofs, checkpoint
+    def __init__(self, op, dofs):
+        self.op, self.dofs = op, dofs
         self.cols = np.full((dofs.size, dofs.size), np.nan)
         self.have = np.zeros(dofs.size, dtype=bool)
         self.time = 0.0
@@ -391,15 +396,23 @@ class _Flexibility:
         new = idx[~self.have[idx]]
         if new.size:
             t0 = time.perf_counter()
-            self.cols[:, new] = self.op.flexibility(self.dofs, self.dofs[new])
+            self.cols[:, new] = self.op.flexibility(self.dofs, self.dofs[new], refine=False)
             self.have[new] = True
             self.time += time.perf_counter() - t0
-            self.checkpoint()  # a factor whose solves missed is left before the contact uses them
         return self.cols[:, idx]
 
     @property
     def solved(self):
         return int(np.count_nonzero(self.have))
+
+
+def _on_spots(x, spots, L):
+    """Mask of the surface points ``x`` on the ``spots`` (edges as :func:`spot_edges` gives them,
+    a leading edge past ``L`` wrapping), or None where that leaves no point."""
+    on = np.zeros(x.size, dtype=bool)
+    for trail, lead in np.reshape(spots, (-1, 2)):
+        on |= ((x >= trail) & (x <= lead)) | ((x + L >= trail) & (x + L <= lead))
+    return on if np.any(on) else None
 
 
 def _segments(L, N, spots):
@@ -419,7 +432,7 @@ def _settle(material, heights, L, P, V, N, depth, ratio, solver, maxiter, keep):
     base = L / N
     spots = np.zeros((0, 2))
     for npass in range(1, PASSES + 1):
-        out = _solve(material, heights, L, P, V, _segments(L, N, spots), depth, ratio, solver, maxiter, keep)
+        out = _solve(material, heights, L, P, V, _segments(L, N, spots), depth, ratio, solver, maxiter, keep, spots)
         new = out["spots"] if not np.all(out["sol"].active) else np.zeros((0, 2))  # full contact: no edges
         moved = np.inf if new.shape != spots.shape else float(np.max(np.abs(new - spots), initial=0.0))
         log.info(
@@ -437,8 +450,10 @@ def _settle(material, heights, L, P, V, N, depth, ratio, solver, maxiter, keep):
     return out
 
 
-def _solve(material, heights, L, P, V, segments, depth, ratio, solver, maxiter, keep):
-    """Mesh the strip for ``segments`` of the surface, factor, solve the contact and the fields."""
+def _solve(material, heights, L, P, V, segments, depth, ratio, solver, maxiter, keep, spots=()):
+    """Mesh the strip for ``segments`` of the surface, factor, solve the contact and the fields; the
+    contact starts from the nodes on ``spots`` (edges found on another mesh), if any: the nodes the
+    active set visits on its way are columns solved for nothing."""
     t0 = time.perf_counter()
     strip = quadtree_strip(L, segments, depth=depth, ratio=ratio)
     ops = quadrature_operators(strip.mesh, "plane", hanging=strip.hanging, periodic=True)
@@ -448,6 +463,7 @@ def _solve(material, heights, L, P, V, segments, depth, ratio, solver, maxiter, 
     weights = top.weights[:-1].copy()
     weights[0] += top.weights[-1]
     hn, slopes = profile_nodes(heights, L, x)
+    start = _on_spots(x, spots, L)
     setup = time.perf_counter() - t0
     carried = np.zeros(material.relaxation_times.size, dtype=bool)
 
@@ -456,19 +472,36 @@ def _solve(material, heights, L, P, V, segments, depth, ratio, solver, maxiter, 
 
     def work(op, checkpoint):
         t1 = time.perf_counter()
-        w = _Flexibility(op, ydofs, checkpoint)
+        w = _Flexibility(op, ydofs)
         limit = maxiter if maxiter is not None else max(100, 2 * x.size)
-        sol = solve_load_control(w, hn, P, maxiter=limit)
-        t3 = time.perf_counter()
-        f = np.zeros(ops.basis.N)
-        f[ydofs] = -sol.lam  # the contact forces on the body
-        u, p, alpha = op.solve(f, strains=True)
+        fields = {"time": 0.0}
+
+        def depression(lam):
+            t = time.perf_counter()
+            f = np.zeros(ops.basis.N)
+            f[ydofs] = -lam  # the contact forces on the body
+            u, p, alpha = op.solve(f, strains=True)
+            checkpoint()  # a factor whose solves missed is left before its fields are used
+            fields["time"] += time.perf_counter() - t
+            return -u[ydofs], (u, p, alpha)
+
         # the contact condition as the field solve satisfies it: gaps from the displaced surface
-        gap = -u[ydofs] - hn - sol.d
-        residual = complementarity_residual(sol.lam, gap, sol.active, P, gap_scale(sol.d, hn[sol.active]))
+        sol, (u, p, alpha) = solve_corrected(
+            w,
+            depression,
+            hn,
+            P,
+            target=complementarity_limit(op.residual_limit) / 100,
+            stall=STALL,
+            active=start,
+            maxiter=limit,
+        )
+        residual = sol.residual
+        t3 = time.perf_counter()
         eps, sigma, diss = stress_and_dissipation(ops, op.material, u, p, alpha)
         t4 = time.perf_counter()
-        timings = dict(op.timings, flexibility=w.time, contact=t3 - t1 - w.time, fields=t4 - t3)
+        contact = t3 - t1 - w.time - fields["time"]
+        timings = dict(op.timings, flexibility=w.time, contact=contact, fields=fields["time"] + t4 - t3)
         return dict(
             op=op,
             sol=sol,

@@ -91,10 +91,12 @@ class SteadyOperator:
     residual_limit: float = RESIDUAL_LIMIT
     timings: dict = None
 
-    def solve(self, forces, strains=True):
+    def solve(self, forces, strains=True, refine=True):
         """Solve for nodal ``forces`` of shape ``(N_u,)`` or ``(N_u, m)`` (N/m).
 
         ``strains=False`` leaves ``alpha`` empty (it holds a field per term and right-hand side).
+        ``refine=False`` takes the factor's solve as it is: no iterative refinement, no residual
+        (it is neither checked nor kept), for a caller that corrects the error itself.
 
         Returns
         -------
@@ -110,9 +112,12 @@ class SteadyOperator:
         npr = self.sizes[1]
         rhs = np.zeros((self.n_unknowns,) + forces.shape[1:])
         rhs[: self.free.size] = forces[self.free] / E
-        x, res, limit = solve_refined(self.matrix, self.factor, rhs, n_equilibrium=self.free.size)
-        if res / limit >= self.residual / self.residual_limit:  # keep the solve closest to its limit
-            self.residual, self.residual_limit = res, limit
+        if refine:
+            x, res, limit = solve_refined(self.matrix, self.factor, rhs, n_equilibrium=self.free.size)
+            if res / limit >= self.residual / self.residual_limit:  # keep the solve closest to its limit
+                self.residual, self.residual_limit = res, limit
+        else:
+            x = self.factor.solve(rhs)
         u = np.zeros(forces.shape)
         u[self.free] = x[: self.free.size]
         u = self.ops.complete(u)
@@ -137,9 +142,10 @@ class SteadyOperator:
             alpha.append(a.reshape(eps.shape))
         return u, p, alpha
 
-    def flexibility(self, rows, cols):
+    def flexibility(self, rows, cols, refine=True):
         """Depression (m, into the solid) of the displacement DOFs ``rows`` per unit downward force
-        (N/m) on each of the vertical DOFs ``cols``: ``(rows.size, cols.size)``."""
+        (N/m) on each of the vertical DOFs ``cols``: ``(rows.size, cols.size)``; ``refine`` as in
+        :meth:`solve`."""
         w = np.empty((rows.size, cols.size))
         # each column solved costs arrays of the system's size: solve them in blocks, keep the rows
         chunk = max(1, int(FLEXIBILITY_ENTRIES // self.n_unknowns))
@@ -147,7 +153,7 @@ class SteadyOperator:
             block = np.arange(lo, min(lo + chunk, cols.size))
             F = np.zeros((self.ops.basis.N, block.size))
             F[cols[block], np.arange(block.size)] = -1.0  # unit downward force on the body
-            u, _, _ = self.solve(F, strains=False)
+            u, _, _ = self.solve(F, strains=False, refine=refine)
             w[:, block] = -u[rows]
         return w
 

@@ -6,7 +6,8 @@ a linear viscoelastic solid (rubber, elastomers), by a fast boundary element met
                                               built-in scene); rerun on the same DIR to resume
     viscobem scene [NAME]                     print a built-in scene (default: the template)
     viscobem bench [NAME] [--quick] --out DIR run a benchmark (NAME: all, periodic, fem,
-                                              fem_convergence, isolated, rubber_speeds, curve,
+                                              fem_convergence, fem_profile, isolated,
+                                              rubber_speeds, curve,
                                               broadband, import, materials, measured, accuracy,
                                               coverage, friction_map, contact);
                                               writes only under DIR
@@ -322,6 +323,7 @@ def build_parser():
             "periodic",
             "fem",
             "fem_convergence",
+            "fem_profile",
             "isolated",
             "rubber_speeds",
             "curve",
@@ -335,7 +337,9 @@ def build_parser():
             "contact",
         ],
         help="all (default: every solver, scaling, skipping), one detailed benchmark "
-        "(fem_convergence: the FEM's observed orders in mesh size, domain size and time step), "
+        "(fem_convergence: the FEM's observed orders in mesh size, domain size and time step; "
+        "fem_profile: the FEM on rough profiles over friction curves against the converged BEM, "
+        "its time and memory), "
         "import (import time of bem against numpy + scipy), materials (Prony fits "
         "and master curves against pyvisco), measured (boundary treatments of measured scans: "
         "patches cut from known surfaces), accuracy (the error estimate's cost and its "
