@@ -505,7 +505,8 @@ def _solve(material, heights, L, P, V, segments, depth, ratio, solver, maxiter, 
         return dict(
             op=op,
             sol=sol,
-            w=w,
+            depression=-u[ydofs],  # the exact field's, not the unrefined columns'
+            columns=w.solved,
             u=u,
             p=p,
             alpha=alpha,
@@ -519,7 +520,13 @@ def _solve(material, heights, L, P, V, segments, depth, ratio, solver, maxiter, 
     out, report = solve_on_path(system_path(material, V, carried, solver, squares=True, closed=True), build, work)
     factor = out["op"].factor
     # nothing solves with this factor again: free it before the twin is factored beside it
-    out["op"] = replace(out["op"], factor=SimpleNamespace(name=factor.name, nnz=getattr(factor, "nnz", -1)))
+    matrix = out["op"].matrix
+    out["op"] = replace(
+        out["op"],
+        factor=SimpleNamespace(name=factor.name, nnz=getattr(factor, "nnz", -1)),
+        matrix=SimpleNamespace(nnz=matrix.nnz),
+    )
+    del matrix
     del factor
     pres = out["sol"].lam / weights
     spots = spot_edges(x, pres, out["sol"].active, L)
@@ -572,7 +579,7 @@ def _result(out, estimate, material, given, terms, h, L, P, V, N, vtk, keep_fiel
     keep = keep_fields or vtk is not None
     fields = solution_fields(out["strip"].mesh, ops, out, material) if keep else {}
     timings = dict(out["timings"], total=time.perf_counter() - t_start)
-    depression = out["w"](np.flatnonzero(sol.active)) @ sol.lam[sol.active]
+    depression = out["depression"]
     res = ProfileResult(
         x=out["x"],
         heights=out["heights"],
