@@ -491,8 +491,8 @@ def test_pardiso_miss_in_the_field_solve_alone_falls_back_to_superlu(monkeypatch
     pytest.importorskip("pypardiso")
     solve = SteadyOperator.solve
 
-    def missing(self, forces, strains=True):
-        out = solve(self, forces, strains)
+    def missing(self, forces, strains=True, refine=True):
+        out = solve(self, forces, strains, refine)
         if self.factor.name == "pardiso" and np.ndim(forces) == 1:
             self.residual = 1.0
         return out
