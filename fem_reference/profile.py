@@ -401,10 +401,6 @@ class _Flexibility:
             self.time += time.perf_counter() - t0
         return self.cols[:, idx]
 
-    @property
-    def solved(self):
-        return int(np.count_nonzero(self.have))
-
 
 def _on_spots(x, spots, L):
     """Mask of the surface points ``x`` on the ``spots`` (edges as :func:`spot_edges` gives them,
@@ -506,7 +502,6 @@ def _solve(material, heights, L, P, V, segments, depth, ratio, solver, maxiter, 
             op=op,
             sol=sol,
             depression=-u[ydofs],  # the exact field's, not the unrefined columns'
-            columns=w.solved,
             u=u,
             p=p,
             alpha=alpha,
