@@ -29,9 +29,6 @@ from viscobem_bench.instruments import bench_main, run_in_fresh_process, thread_
 
 __all__ = ["RUBBERS", "profile_case", "run", "main"]
 
-REF_POINTS = 4096  # the BEM reference's points a period (converged: docs/fem-profile.md)
-
-
 def _rubber(name):
     import bem
     from validation.cases.rough_profile import rubber
@@ -46,18 +43,19 @@ RUBBERS = {"4-term": (22, 40.0, (3e-4, 3e-3, 3e-2, 3e-1, 3.0)), "20-term": (5, 2
 
 
 def profile_case(name, speed, elements=None):
-    """One row: the FEM's default call (or ``elements`` squares a period) against the converged BEM."""
+    """One row: the FEM's default call (or ``elements`` squares a period) against the converged BEM
+    of the validation case ``rough_profile`` (its reference points and tolerance)."""
     import bem
     from bem import surfaces
     from fem_reference import sliding_profile
     from fem_reference.profile import profile_nodes
-    from validation.cases.rough_profile import L, profile_heights
+    from validation.cases.rough_profile import REF_POINTS, RTOL, L, profile_heights
 
     seed, load, _ = RUBBERS[name]
     m = _rubber(name)
     h = profile_heights(seed)
     fine, _ = profile_nodes(h, L, np.arange(REF_POINTS) * L / REF_POINTS)
-    ref = bem.solve(surfaces.Surface(fine, L), m, speed=speed, load=load, rtol=1e-10)
+    ref = bem.solve(surfaces.Surface(fine, L), m, speed=speed, load=load, rtol=RTOL)
     t0 = time.perf_counter()
     kwargs = {} if elements is None else {"elements": elements}
     f = sliding_profile(m, heights=h, length=L, load=load, speed=speed, **kwargs)
