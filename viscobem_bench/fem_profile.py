@@ -29,6 +29,7 @@ from viscobem_bench.instruments import bench_main, run_in_fresh_process, thread_
 
 __all__ = ["RUBBERS", "profile_case", "run", "main"]
 
+
 def _rubber(name):
     import bem
     from validation.cases.rough_profile import rubber
