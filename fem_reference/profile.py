@@ -70,7 +70,7 @@ EDGE_REFINE = 8
 PASSES = 4
 # Surface elements where none are asked for: as many as the profile has samples, so that the nodes
 # (two per element) sample it twice as finely as the BEM's grid of the same profile, and at least this
-# many: the dissipation form's error is first order in the element size (a standard solid at
+# many: the dissipation form's error falls with the element size (a standard solid at
 # E_inf/E0 = 300 a decade below its friction peak: +2.3 % on 32 squares a period)
 MIN_ELEMENTS = 64
 # The accuracy a reference must hold in the friction (as the rolling model's)
