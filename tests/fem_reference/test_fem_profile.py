@@ -189,6 +189,19 @@ def test_full_contact_dissipation_form_error_is_set_by_the_growth_with_depth():
     assert errs[1.12][0] < errs[1.25][0] / 10, errs
 
 
+def test_an_unresolved_dissipation_form_warns_with_the_squares_to_pass():
+    """On 8 squares a period the full-contact sinusoid's dissipation form is +2.7 % off at 0.01 m/s:
+    the result warns, its estimate covers the error, and the warning names the squares used and
+    finer counts, the remedy a user can pass."""
+    h, pm, mu = _full_contact_case(0.01)
+    r = sliding_profile(RUBBER, heights=h, length=L, load=pm * L, speed=0.01, elements=8)
+    err = abs(r.friction_dissipation / mu - 1)
+    assert r.success and err > 0.01
+    assert r.error_estimate["friction_dissipation"] >= err
+    said = [w for w in r.warnings if w.startswith("friction dissipation error estimate")]
+    assert len(said) == 1 and "elements=8 here; elements=16 or 32" in said[0], r.warnings
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("V", [0.01, 0.3])
 def test_full_contact_dissipation_form_converges_at_first_order(V):
