@@ -64,15 +64,19 @@ DEPTH = 2
 # surface: the edge is placed to a fraction of the node spacing there. On a rough profile at 10 %
 # contact (4 spots) the contact fraction was +5.9 % off the BEM on 128 uniform squares a period,
 # +1.9 % with 32 squares refined 8 times about the edges (or 64 refined 4 times: the edge squares set
-# it) and -0.4 % with 64 refined 8 times
-EDGE_REFINE = 8
+# it) and -0.4 % with 64 refined 8 times; 128 refined 4 times places the edges as 64 refined 8 times
+EDGE_REFINE = 4
 # Most meshes solved while the spot edges settle
 PASSES = 4
-# Surface elements where none are asked for: as many as the profile has samples, so that the nodes
-# (two per element) sample it twice as finely as the BEM's grid of the same profile, and at least this
-# many: the dissipation form's error falls with the element size (a standard solid at
-# E_inf/E0 = 300 a decade below its friction peak: +2.3 % on 32 squares a period)
-MIN_ELEMENTS = 64
+# Surface squares where none are asked for: two a sample, so that the shortest wavelength the samples
+# carry (two samples) spans four squares, and at least this many. A short memory dissipates the
+# square of the strain's slope along the flow, most of it in the shortest wavelengths, so in (nearly)
+# full contact the dissipation form needs them resolved: two decades below the friction peak, +4.5 %
+# / +3.1 % / +2.6 % off the BEM on one square a sample, +1.9 % / +1.1 % / +0.95 % on two (three rubbers
+# and profiles). Spots cost columns, not squares: with EDGE_REFINE halved, the squares about the edges
+# stay as small, and at the friction peak the unknowns and time stay the same (106,687 against
+# 106,828 unknowns, 81 against 79 s, on the validation profile)
+MIN_ELEMENTS = 128
 # The accuracy a reference must hold in the friction (as the rolling model's)
 ESTIMATE_LIMIT = {"friction": 0.01, "friction_dissipation": 0.01}
 FORMS = ("friction", "friction_dissipation")
@@ -241,7 +245,7 @@ def _check(material, heights, length, load, speed, elements, depth, grading, fol
     V = check_positive("speed", speed, allow_zero=True)
     least = 2 ** math.ceil(math.log2(h.size / 2))
     if elements is None:
-        elements = max(MIN_ELEMENTS, 2 ** math.ceil(math.log2(h.size)))
+        elements = max(MIN_ELEMENTS, 2 ** math.ceil(math.log2(2 * h.size)))
     elements = check_int("elements", elements, 4, 2**16)
     if elements & (elements - 1) or elements < least:
         raise InputError(f"elements must be a power of two and at least half the samples ({least}): got {elements}")
@@ -289,7 +293,7 @@ def sliding_profile(
         Sliding speed ``V`` (m/s), ``>= 0``.
     elements : int, optional
         Squares along the surface of one period, a power of two of at least half the samples;
-        default the samples' count rounded up to a power of two (at least :data:`MIN_ELEMENTS`).
+        default twice the samples' count rounded up to a power of two (at least :data:`MIN_ELEMENTS`).
         Node spacing is ``L / (2 elements)``.
     depth : int
         Depth of the strip in periods (:data:`DEPTH`).

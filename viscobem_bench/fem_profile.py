@@ -15,7 +15,7 @@ are 10 minutes and 8 GiB a speed on 2 cores; the errors are judged against 2 % (
   200 N/m, from two decades below its friction peak (1e-4 m/s) to two above.
 
 Run: ``viscobem bench fem_profile [--quick] --out DIR`` (writes ``DIR/fem_profile.json``); ``--quick``
-runs the 4-term rubber at its peak and a decade above on 32 squares a period.
+runs the 4-term rubber at its peak and a decade above on 64 squares a period.
 """
 
 from __future__ import annotations
@@ -83,13 +83,13 @@ def run(quick: bool = True, out_dir=".") -> dict:
     """Run the rows; print the table and write ``out_dir/fem_profile.json``."""
     env = thread_environment(2)
     if quick:
-        jobs = [("4-term", V, 32) for V in (3e-2, 3e-1)]
+        jobs = [("4-term", V, 64) for V in (3e-2, 3e-1)]
     else:
         jobs = [(name, V, None) for name, (_, _, speeds) in RUBBERS.items() for V in speeds]
     rows = [run_in_fresh_process(profile_case, *job, env=env) for job in jobs]
     print(
         "FEM on rough profiles against the converged BEM (4096 points): default call"
-        + (", 32 squares" if quick else "")
+        + (", 64 squares" if quick else "")
     )
     cols = ["rubber", "speed", "contact", "unknowns", "meshes", "wall_s", "peak_gib", "moment_error", "moment_estimate"]
     cols += ["dissipation_error", "dissipation_estimate", "contact_error", "warned", "success"]
@@ -105,7 +105,7 @@ def main(argv=None):
         __doc__.splitlines()[0],
         "fem_profile.json",
         argv,
-        quick_help="the 4-term rubber at two speeds on 32 squares",
+        quick_help="the 4-term rubber at two speeds on 64 squares",
     )
 
 
