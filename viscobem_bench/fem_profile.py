@@ -40,6 +40,8 @@ def _rubber(name):
 
 
 # name: (profile seed, load N/m, speeds m/s)
+# squares a period of the --quick rows (the default's squares at the spot edges, half its squares elsewhere)
+QUICK_SQUARES = 64
 RUBBERS = {"4-term": (22, 40.0, (3e-4, 3e-3, 3e-2, 3e-1, 3.0)), "20-term": (5, 200.0, (1e-6, 1e-5, 1e-4, 1e-3, 1e-2))}
 
 
@@ -83,13 +85,13 @@ def run(quick: bool = True, out_dir=".") -> dict:
     """Run the rows; print the table and write ``out_dir/fem_profile.json``."""
     env = thread_environment(2)
     if quick:
-        jobs = [("4-term", V, 64) for V in (3e-2, 3e-1)]
+        jobs = [("4-term", V, QUICK_SQUARES) for V in (3e-2, 3e-1)]
     else:
         jobs = [(name, V, None) for name, (_, _, speeds) in RUBBERS.items() for V in speeds]
     rows = [run_in_fresh_process(profile_case, *job, env=env) for job in jobs]
     print(
         "FEM on rough profiles against the converged BEM (4096 points): default call"
-        + (", 64 squares" if quick else "")
+        + (f", {QUICK_SQUARES} squares" if quick else "")
     )
     cols = ["rubber", "speed", "contact", "unknowns", "meshes", "wall_s", "peak_gib", "moment_error", "moment_estimate"]
     cols += ["dissipation_error", "dissipation_estimate", "contact_error", "warned", "success"]
@@ -105,7 +107,7 @@ def main(argv=None):
         __doc__.splitlines()[0],
         "fem_profile.json",
         argv,
-        quick_help="the 4-term rubber at two speeds on 64 squares",
+        quick_help=f"the 4-term rubber at two speeds on {QUICK_SQUARES} squares",
     )
 
 
