@@ -73,6 +73,10 @@ def _eta_kept(eta, *, damped):
     return eta
 
 
+def _full_step(p, g, p_new, g_new, c, *, full):
+    return 1.0
+
+
 def _default_choice(attempt, options):
     return attempt.precondition if attempt.precondition is not None else options.precondition
 
@@ -175,7 +179,12 @@ MECHANISMS = [
         {},
         {"solver:start_rtol": _start_rtol_1e_3, "newton:start_rtol": _start_rtol_1e_3},
     ),
-    ("twelve halvings", "line search down to 1/2**12 (off: 1/2**4)", {}, {"newton:SEARCH_HALVINGS": 4}),
+    (
+        "line search",
+        "damped steps to the merit's first minimum over 1/2, 1/4, ... (off: full steps)",
+        {},
+        {"newton:line_search": _full_step},
+    ),
 ]
 
 

@@ -39,11 +39,6 @@ GAP_FLOOR_SHARE = 1e-4
 """Smallest gap scale as a share of the height range: below it round-off of the gap would stop
 tight solves (ablation row "gap floor": no product on the set, but the 4096-point profile of
 ``tests/bem/contact/test_roundoff.py`` reaches rtol 1e-11 only with it)."""
-SEARCH_HALVINGS = 12
-"""Step lengths 1/2 ... 1/2**12 tried by the line search: they cost no product. Ablation row
-"twelve halvings" (4 instead): 0.71x the products on the case set (the sinusoid near full contact
-4767 against 9832, the 1-D rubber curve 1303 against 1735), no case lost, but 0.999x on the six
-512² friction curves of ``viscobem bench curve``, where the cost is (``docs/theory.md`` §4.2)."""
 PRECONDITION_MIN_SIZE = 2**17
 """Grid points from which the exact full-contact inverse pays its extra FFT pair as a
 preconditioner: smaller restricted systems are well conditioned. Below it the preconditioner is
@@ -186,9 +181,13 @@ def roundoff_floor(pb, it):
 
 
 def line_search(p, g, p_new, g_new, c, *, full):
-    """Step ``t`` in (0, 1] that (nearly) minimises the merit ``||min(p, c g)||**2`` along the
-    segment from ``(p, g)`` to ``(p_new, g_new)``: the full step if allowed (``full``) and it
-    lowers the merit at all, else the best of ``1/2 ... 1/2**k``."""
+    """Step ``t`` in (0, 1] that lowers the merit ``||min(p, c g)||**2`` along the segment from
+    ``(p, g)`` to ``(p_new, g_new)``: the full step if allowed (``full``) and it lowers the merit
+    at all, else the first local minimum of the merit over ``1/2, 1/4, ...`` below its value at 0
+    (halve until the merit is lower, then while it keeps falling). The halvings cost no product;
+    they end, at the latest, where the step no longer moves any point the merit sees, and an
+    inner solve too loose to give a descent direction is then solved tight on the unchanged set. Ablation row "line search" (off: full steps): 1.52x the products and three
+    cases lost (``docs/theory.md`` §4.2)."""
     # only points with pressure or negative gap at either end can contribute
     live = ((p != 0) | (p_new != 0) | (g < 0) | (g_new < 0)).reshape(-1)
     p0, g0 = p.reshape(-1)[live], g.reshape(-1)[live]
@@ -201,10 +200,20 @@ def line_search(p, g, p_new, g_new, c, *, full):
     m0 = merit(0.0)
     if full and merit(1.0) < m0:
         return 1.0
-    ts = 0.5 ** np.arange(1, SEARCH_HALVINGS + 1)
-    values = [merit(t) for t in ts]
-    k = int(np.argmin(values))
-    return float(ts[k]) if values[k] < m0 else float(ts[-1])
+
+    def moves(t):
+        return bool(np.any(p0 + t * dp != p0) or np.any(g0 + t * dg != g0))
+
+    t, m = 0.5, merit(0.5)
+    while m >= m0 and moves(t):
+        t *= 0.5
+        m = merit(t)
+    while m < m0:  # merit(0.5 t) >= m0 once the step moves nothing: this ends
+        lower = merit(0.5 * t)
+        if lower >= m:
+            break
+        t, m = 0.5 * t, lower
+    return t
 
 
 def problem_scales(op, heights, mean_pressure, approach, rtol, *, p_mean=None):
