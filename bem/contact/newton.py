@@ -186,8 +186,9 @@ def line_search(p, g, p_new, g_new, c, *, full):
     at all, else the first local minimum of the merit over ``1/2, 1/4, ...`` below its value at 0
     (halve until the merit is lower, then while it keeps falling). The halvings cost no product;
     they end, at the latest, where the step no longer moves any point the merit sees, and an
-    inner solve too loose to give a descent direction is then solved tight on the unchanged set. Ablation row "line search" (off: full steps): 1.52x the products and three
-    cases lost (``docs/theory.md`` §4.2)."""
+    inner solve too loose to give a descent direction is then solved tight on the unchanged set.
+    Ablation row "line search" (off: full steps): 1.52x the products and three cases lost
+    (``docs/theory.md`` §4.2)."""
     # only points with pressure or negative gap at either end can contribute
     live = ((p != 0) | (p_new != 0) | (g < 0) | (g_new < 0)).reshape(-1)
     p0, g0 = p.reshape(-1)[live], g.reshape(-1)[live]
