@@ -314,7 +314,7 @@ def cases(quick=False):
     s = bem.surfaces.sinusoid(64, L, amplitude=2e-6)
     out.append(_rough_case("sinusoid 64², SLS 1e4, xi 1, load 0.8", s, sls(1e4), 1.0, 0.8))
     if not quick:
-        # near full contact: the near-full start's case (28 products with it, 1162 without)
+        # near full contact: the near-full start's case (28 products with it, 21,390 without)
         out.append(_rough_case("2-D 32², SLS 1e4, xi 1, load 0.9", rough(32), sls(1e4), 1.0, 0.9))
         # the path-sensitive case of docs/theory.md §4.2 (at 32², E_inf/E0 1e4, xi 100)
         out.append(_rough_case("2-D 32², SLS 10000, xi 100", rough(32), sls(1e4), 1e2))
